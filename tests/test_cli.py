@@ -1,0 +1,34 @@
+"""The command line as a user meets it: results printed and written, problems named without a traceback."""
+
+import json
+
+from hydroderiv.cli import main
+
+
+def test_geometry_writes_named_solids_and_prints_reference_quantities(tmp_path, capsys):
+    assert main(["geometry", "--config", "AFF-8", "--out", str(tmp_path), "--resolution", "0.04"]) == 0
+    out = capsys.readouterr().out
+    assert "4.2610 m" in out and "wetted area" in out and "SUBOFF AFF-8" in out
+    solids = [line.split()[1] for line in (tmp_path / "body.stl").read_text().splitlines() if line.startswith("solid ")]
+    assert solids == ["hull", "sail", "appendage_top", "appendage_starboard", "appendage_bottom", "appendage_port"]
+    info = json.loads((tmp_path / "body.json").read_text())
+    assert info["reference"]["length"] == 4.261 and info["reference"]["max_diameter"] == 0.508
+
+
+def test_all_configurations_go_to_their_own_directories(tmp_path):
+    assert main(["geometry", "--config", "all", "--out", str(tmp_path), "--resolution", "0.05"]) == 0
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["AFF-1", "AFF-2", "AFF-3", "AFF-8"]
+
+
+def test_bad_stl_gives_a_clear_error_not_a_traceback(tmp_path, capsys):
+    bad = tmp_path / "empty.stl"
+    bad.write_text("")
+    code = main(["geometry", "--stl", str(bad), "--length", "4.261", "--moment-centre", "0", "0", "0", "--out", str(tmp_path / "o")])
+    captured = capsys.readouterr()
+    assert code == 2
+    assert "error:" in captured.out and "empty" in captured.out and "Traceback" not in captured.out + captured.err
+
+
+def test_unknown_configuration_is_named(tmp_path, capsys):
+    assert main(["geometry", "--config", "AFF-5", "--out", str(tmp_path)]) == 2
+    assert "unknown SUBOFF configuration 'AFF-5'" in capsys.readouterr().out
