@@ -1,0 +1,97 @@
+"""Watching a steady solver: residuals from its log, force convergence, divergence."""
+
+from __future__ import annotations
+
+import math
+import re
+from dataclasses import dataclass, field
+
+import numpy as np
+
+_TIME = re.compile(r"^Time = (\S+)", re.M)
+_RESIDUAL = re.compile(r"Solving for (\w+), Initial residual = ([^,]+),")
+
+
+@dataclass
+class LogWatcher:
+    """Reads a solver log incrementally: the latest iteration and the initial residual of each field."""
+
+    iteration: int = 0
+    residuals: dict[str, float] = field(default_factory=dict)
+    _buffer: str = ""
+
+    def feed(self, text: str) -> None:
+        text = self._buffer + text
+        # keep an unfinished last line for the next call
+        cut = text.rfind("\n") + 1
+        self._buffer = text[cut:]
+        for block in re.split(r"(?=^Time = )", text[:cut], flags=re.M):
+            times = _TIME.findall(block)
+            if times:
+                try:
+                    self.iteration = int(float(times[-1]))
+                except ValueError:
+                    pass
+                self.residuals = {}
+            for name, value in _RESIDUAL.findall(block):
+                # the first solve of a field in an iteration carries its initial residual
+                self.residuals.setdefault(name, _to_float(value))
+
+    def divergence(self, limit: float = 1e3) -> str | None:
+        """A reason to call the run diverged, or None."""
+        for name, value in self.residuals.items():
+            if not math.isfinite(value):
+                return f"the {name} residual is {value} at iteration {self.iteration}"
+            if value > limit:
+                return f"the {name} residual exploded to {value:.3g} at iteration {self.iteration}"
+        return None
+
+
+def _to_float(text: str) -> float:
+    try:
+        return float(text)
+    except ValueError:
+        return math.nan  # OpenFOAM prints 'nan' / '-nan'
+
+
+@dataclass(frozen=True)
+class ConvergenceCriterion:
+    """Forces converged: over the last ``window`` iterations every monitored coefficient varies by at most
+    ``rel_tol`` of its magnitude, or by at most ``abs_tol`` (prime units) when it is nearly zero.
+
+    ``min_iterations`` guards against declaring convergence while the start-up transient is still flat;
+    ``max_iterations`` ends a run that never settles (it is then reported as not converged).
+    """
+
+    window: int = 50
+    rel_tol: float = 0.005
+    abs_tol: float = 2e-6
+    min_iterations: int = 100
+    max_iterations: int = 3000
+
+    def spread(self, coefficients: np.ndarray) -> np.ndarray:
+        """Per-component (max - min) over the window, relative to the tolerance it must meet (<= 1 passes)."""
+        recent = coefficients[-self.window :]
+        allowed = np.maximum(self.rel_tol * np.abs(recent[-1]), self.abs_tol)
+        return np.ptp(recent, axis=0) / allowed
+
+    def is_met(self, iterations: np.ndarray, coefficients: np.ndarray) -> bool:
+        if len(iterations) < self.window or iterations[-1] < self.min_iterations:
+            return False
+        return bool(np.all(self.spread(coefficients) <= 1.0))
+
+
+def force_divergence(coefficients: np.ndarray, limit: float = 1.0) -> str | None:
+    """A reason to call the run diverged from its force coefficients, or None.
+
+    Prime force coefficients of a streamlined body are of order 1e-3; a value beyond ``limit`` (or NaN)
+    means the solution has blown up even if the residuals have not noticed yet.
+    """
+    if len(coefficients) == 0:
+        return None
+    last = coefficients[-1]
+    if not np.all(np.isfinite(last)):
+        return "the forces became NaN"
+    if np.abs(last).max() > limit:
+        return f"the force coefficients blew up to {np.abs(last).max():.3g}"
+    return None

@@ -1,0 +1,53 @@
+"""Reading a solver's log and judging force convergence and divergence."""
+
+import numpy as np
+
+from hydroderiv.run.monitor import ConvergenceCriterion, LogWatcher, force_divergence
+
+LOG = """Time = 1
+
+smoothSolver:  Solving for Ux, Initial residual = 1, Final residual = 0.05, No Iterations 2
+smoothSolver:  Solving for Uy, Initial residual = 0.9, Final residual = 0.05, No Iterations 2
+GAMG:  Solving for p, Initial residual = 1, Final residual = 0.009, No Iterations 5
+GAMG:  Solving for p, Initial residual = 0.3, Final residual = 0.009, No Iterations 5
+ExecutionTime = 1.2 s  ClockTime = 1 s
+
+Time = 2
+
+smoothSolver:  Solving for Ux, Initial residual = 0.2, Final residual = 0.01, No Iterations 2
+GAMG:  Solving for p, Initial residual = 0.5, Final residual = 0.01, No Iterations 4
+"""
+
+
+def test_log_watcher_takes_the_first_initial_residual_of_the_latest_iteration():
+    w = LogWatcher()
+    w.feed(LOG[:200])  # a partial feed, cut mid-line
+    w.feed(LOG[200:])
+    assert w.iteration == 2
+    assert w.residuals == {"Ux": 0.2, "p": 0.5}
+    assert w.divergence() is None
+
+
+def test_nan_and_exploding_residuals_are_divergence():
+    w = LogWatcher()
+    w.feed("Time = 7\n\nsmoothSolver:  Solving for Ux, Initial residual = nan, Final residual = nan, No Iterations 1000\n")
+    assert "Ux residual is nan at iteration 7" in w.divergence()
+    w.feed("Time = 8\n\nGAMG:  Solving for p, Initial residual = 5e+06, Final residual = 1, No Iterations 1000\n")
+    assert "exploded" in w.divergence()
+
+
+def test_convergence_needs_a_flat_window_after_the_minimum_iterations():
+    c = ConvergenceCriterion(window=50, rel_tol=0.005, abs_tol=1e-6, min_iterations=100)
+    it = np.arange(1, 301)
+    decaying = np.column_stack([1e-3 * (1 + np.exp(-it / 20.0)), 1e-8 * np.sin(it)])  # drag settles, side force ~0
+    assert not c.is_met(it[:80], decaying[:80])  # before min_iterations
+    assert c.is_met(it, decaying)
+    oscillating = decaying.copy()
+    oscillating[:, 0] *= 1 + 0.02 * np.sin(it / 3.0)
+    assert not c.is_met(it, oscillating)
+
+
+def test_force_blow_up_is_divergence():
+    assert force_divergence(np.array([[1e-3, 0.0]])) is None
+    assert "NaN" in force_divergence(np.array([[np.nan, 0.0]]))
+    assert "blew up" in force_divergence(np.array([[50.0, 0.0]]))
