@@ -1,0 +1,46 @@
+"""Discretisation and solver settings of the steady RANS runs (simpleFoam, k-omega SST)."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from .._foam import write_foam_dict
+
+
+def write_numerics(case: Path, second_order: bool = True) -> None:
+    """fvSchemes and fvSolution. Second-order (bounded linear-upwind) convection for validation runs."""
+    convection = "bounded Gauss linearUpwind grad({})" if second_order else "bounded Gauss upwind"
+    write_foam_dict(
+        Path(case) / "system/fvSchemes",
+        {
+            "ddtSchemes": {"default": "steadyState"},
+            "gradSchemes": {
+                "default": "Gauss linear",
+                "grad(U)": "cellLimited Gauss linear 1",
+                "grad(k)": "cellLimited Gauss linear 1",
+                "grad(omega)": "cellLimited Gauss linear 1",
+            },
+            "divSchemes": {
+                "default": "none",
+                "div(phi,U)": convection.format("U"),
+                "div(phi,k)": convection.format("k"),
+                "div(phi,omega)": convection.format("omega"),
+                "div((nuEff*dev2(T(grad(U)))))": "Gauss linear",
+            },
+            "laplacianSchemes": {"default": "Gauss linear limited corrected 0.33"},
+            "interpolationSchemes": {"default": "linear"},
+            "snGradSchemes": {"default": "limited corrected 0.33"},
+            "wallDist": {"method": "meshWave"},
+        },
+    )
+    write_foam_dict(
+        Path(case) / "system/fvSolution",
+        {
+            "solvers": {
+                "p": {"solver": "GAMG", "smoother": "GaussSeidel", "tolerance": 1e-7, "relTol": 0.05},
+                '"(U|k|omega)"': {"solver": "smoothSolver", "smoother": "symGaussSeidel", "tolerance": 1e-8, "relTol": 0.1},
+            },
+            "SIMPLE": {"nNonOrthogonalCorrectors": 0, "consistent": False},
+            "relaxationFactors": {"fields": {"p": 0.3}, "equations": {"U": 0.7, "k": 0.6, "omega": 0.6}},
+        },
+    )

@@ -1,0 +1,243 @@
+"""Writing one condition's OpenFOAM case onto the shared mesh.
+
+Only the inflow vector, Omega and the momentum source change between conditions; the mesh is linked,
+never rebuilt. Far field: the six cube faces form one patch whose conditions switch each face between
+inflow and outflow with the local flux (freestreamVelocity / freestreamPressure), so any inflow direction
+works on the same mesh.
+"""
+
+from __future__ import annotations
+
+import os
+import shutil
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from .._foam import quoted, write_foam_dict
+from ..mesh.snappy import FARFIELD, ROTATING_ZONE, WALL_GROUP
+from ..run.solver import STOP_FILE, TOTAL_FORCES, component_function_name
+from .conditions import Condition
+from .fluid import Fluid, FreestreamTurbulence
+from .numerics import write_numerics
+
+FIELDS = ("U", "p", "k", "omega", "nut")
+
+
+@dataclass(frozen=True)
+class CaseSettings:
+    """What a condition's case needs besides the condition itself."""
+
+    length: float  # reference length L (Omega and the source scale with U/L)
+    components: tuple[str, ...]
+    fluid: Fluid = field(default_factory=Fluid)
+    turbulence: FreestreamTurbulence = field(default_factory=FreestreamTurbulence)
+    n_procs: int = 1
+    max_iterations: int = 3000
+    write_interval: int = 250  # iterations between intermediate writes, for resuming an interrupted run
+    second_order: bool = True
+
+
+def _vector(v) -> list[float]:
+    return [float(f"{x:.10g}") for x in np.asarray(v, dtype=float)]
+
+
+def _write_control(case: Path, s: CaseSettings) -> None:
+    functions = {}
+    force_common = {
+        "type": "forces",
+        "libs": [quoted("libforces.so")],
+        "writeControl": "timeStep",
+        "writeInterval": 1,
+        "rho": "rhoInf",
+        "rhoInf": s.fluid.rho,
+        "CofR": [0.0, 0.0, 0.0],  # moments about the moment centre B, the origin of the body axes
+        "log": False,
+    }
+    functions[TOTAL_FORCES] = {**force_common, "patches": list(s.components)}
+    for component in s.components:
+        functions[component_function_name(component)] = {**force_common, "patches": [component]}
+    functions["yPlus"] = {"type": "yPlus", "libs": [quoted("libfieldFunctionObjects.so")], "writeControl": "writeTime"}
+    # Creating the file STOP in the case makes the solver write and exit: the convergence monitor's brake.
+    functions["stop"] = {
+        "type": "abort",
+        "libs": [quoted("libutilityFunctionObjects.so")],
+        "file": quoted(f"<case>/{STOP_FILE}"),
+        "action": "writeNow",
+    }
+    write_foam_dict(
+        case / "system/controlDict",
+        {
+            "application": "simpleFoam",
+            "startFrom": "latestTime",
+            "startTime": 0,
+            "stopAt": "endTime",
+            "endTime": s.max_iterations,
+            "deltaT": 1,
+            "writeControl": "timeStep",
+            "writeInterval": min(s.write_interval, s.max_iterations),
+            "purgeWrite": 1,
+            "writeFormat": "binary",
+            "writePrecision": 10,
+            "writeCompression": False,
+            "timeFormat": "general",
+            "timePrecision": 8,
+            "runTimeModifiable": True,
+            "functions": functions,
+        },
+    )
+
+
+def _write_physics(case: Path, condition: Condition, s: CaseSettings) -> None:
+    write_foam_dict(case / "constant/transportProperties", {"transportModel": "Newtonian", "nu": s.fluid.nu})
+    write_foam_dict(
+        case / "constant/turbulenceProperties",
+        {"simulationType": "RAS", "RAS": {"RASModel": "kOmegaSST", "turbulence": True, "printCoeffs": True}},
+    )
+    omega = condition.angular_velocity(s.length)
+    magnitude = float(np.linalg.norm(omega))
+    # The hybrid frames: the sphere rotates about B with Omega; the far field outside it is inertial.
+    write_foam_dict(
+        case / "constant/MRFProperties",
+        {
+            "rotatingFrame": {
+                "cellZone": ROTATING_ZONE,
+                "active": magnitude > 0,
+                "nonRotatingPatches": [],  # the body rotates with the frame
+                "origin": [0.0, 0.0, 0.0],
+                "axis": _vector(omega / magnitude) if magnitude > 0 else [0.0, 0.0, 1.0],
+                "omega": magnitude,
+            }
+        },
+    )
+    source = condition.momentum_source(s.length)
+    # Delta/rho = Omega x U_inf on the same zone: cancels the Coriolis term of the free stream in
+    # OpenFOAM's absolute-velocity MRF, so uniform flow solves both zones exactly. Kinematic: m/s^2.
+    write_foam_dict(
+        case / "constant/fvOptions",
+        {
+            "hybridFramesSource": {
+                "type": "vectorSemiImplicitSource",
+                "active": bool(np.any(source)),
+                "selectionMode": "cellZone",
+                "cellZone": ROTATING_ZONE,
+                "volumeMode": "specific",
+                "injectionRateSuSp": {"U": [_vector(source), 0.0]},
+            }
+        },
+    )
+
+
+def _fields(condition: Condition, s: CaseSettings) -> dict[str, dict]:
+    # Field files: foamlib writes a plain value of a field entry as 'uniform <value>'.
+    inflow = _vector(condition.inflow())
+    k = s.turbulence.k(condition.speed)
+    omega = s.turbulence.omega(condition.speed, s.fluid.nu)
+    return {
+        "U": {
+            "class": "volVectorField",
+            "dimensions": "[0 1 -1 0 0 0 0]",
+            "internal": inflow,
+            "farfield": {"type": "freestreamVelocity", "freestreamValue": inflow, "value": inflow},
+            "wall": {"type": "noSlip"},
+        },
+        "p": {
+            "class": "volScalarField",
+            "dimensions": "[0 2 -2 0 0 0 0]",
+            "internal": 0.0,
+            "farfield": {"type": "freestreamPressure", "freestreamValue": 0.0, "value": 0.0},
+            "wall": {"type": "zeroGradient"},
+        },
+        "k": {
+            "class": "volScalarField",
+            "dimensions": "[0 2 -2 0 0 0 0]",
+            "internal": k,
+            "farfield": {"type": "inletOutlet", "inletValue": k, "value": k},
+            "wall": {"type": "kqRWallFunction", "value": k},
+        },
+        "omega": {
+            "class": "volScalarField",
+            "dimensions": "[0 0 -1 0 0 0 0]",
+            "internal": omega,
+            "farfield": {"type": "inletOutlet", "inletValue": omega, "value": omega},
+            "wall": {"type": "omegaWallFunction", "value": omega},
+        },
+        "nut": {
+            "class": "volScalarField",
+            "dimensions": "[0 2 -1 0 0 0 0]",
+            "internal": 0.0,
+            "farfield": {"type": "calculated", "value": 0.0},
+            "wall": {"type": "nutkWallFunction", "value": 0.0},
+        },
+    }
+
+
+def _write_fields(case: Path, condition: Condition, s: CaseSettings, warm_start: Path | None) -> None:
+    zero = case / "0"
+    if zero.exists():
+        shutil.rmtree(zero)
+    for name, spec in _fields(condition, s).items():
+        # The patch group is written unquoted: a quoted "bodyWalls" would be a regular expression that
+        # matches no patch name (groups are only matched by their plain name).
+        boundary = {FARFIELD: spec["farfield"], WALL_GROUP: spec["wall"]}
+        write_foam_dict(
+            zero / name,
+            {"dimensions": spec["dimensions"], "internalField": spec["internal"], "boundaryField": boundary},
+            foam_class=spec["class"],
+        )
+        if warm_start is not None:
+            _take_internal_field(zero / name, warm_start / name)
+
+
+def _take_internal_field(target: Path, source: Path) -> None:
+    """Replace the uniform internalField of ``target`` by the solution in ``source`` (same mesh)."""
+    from foamlib import FoamFieldFile
+
+    solved = FoamFieldFile(source).internal_field
+    with FoamFieldFile(target) as f:
+        f.internal_field = solved
+
+
+def latest_time_dir(case: Path) -> Path | None:
+    """The latest written (reconstructed) time directory other than 0, if any."""
+    times = []
+    for d in Path(case).iterdir():
+        try:
+            value = float(d.name)
+        except ValueError:
+            continue
+        if value > 0 and (d / "U").is_file():
+            times.append((value, d))
+    return max(times)[1] if times else None
+
+
+def write_condition_case(
+    case: str | Path,
+    mesh_case: str | Path,
+    condition: Condition,
+    settings: CaseSettings,
+    warm_start: Path | None = None,
+) -> Path:
+    """Write the case of ``condition`` in ``case`` on the mesh of ``mesh_case`` (linked, not copied).
+
+    ``warm_start`` is a finished solution's time directory on the same mesh; its fields become the
+    initial fields (the boundary conditions are this condition's own).
+    """
+    case, mesh_case = Path(case), Path(mesh_case).resolve()
+    (case / "constant").mkdir(parents=True, exist_ok=True)
+    (case / "system").mkdir(parents=True, exist_ok=True)
+    link = case / "constant/polyMesh"
+    if link.is_symlink() or link.exists():
+        link.unlink() if link.is_symlink() else shutil.rmtree(link)
+    os.symlink(mesh_case / "constant/polyMesh", link, target_is_directory=True)
+    _write_control(case, settings)
+    write_numerics(case, settings.second_order)
+    write_foam_dict(
+        case / "system/decomposeParDict",
+        {"numberOfSubdomains": settings.n_procs, "method": "hierarchical",
+         "coeffs": {"n": [settings.n_procs, 1, 1], "order": "xyz"}},
+    )
+    _write_physics(case, condition, settings)
+    _write_fields(case, condition, settings, warm_start)
+    return case

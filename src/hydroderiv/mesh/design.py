@@ -1,0 +1,116 @@
+"""The numbers of the single mesh: domain, rotating sphere, refinement levels and prism layers.
+
+One mesh serves every condition. The domain is a cube centred at the moment centre B with a sphere of
+radius 2L (the rotating zone of the hybrid frames, as in the seed paper's Fig. 4) snapped inside it.
+Levels coarse/medium/fine differ only in the base cell size, by a constant ratio, so that they form a
+systematic family for a grid-convergence study; all refinement levels are relative to the base cell.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from ..errors import ConfigurationError
+
+REFINEMENT_RATIO = math.sqrt(2.0)  # base cell size ratio between successive levels
+LEVELS = ("coarse", "medium", "fine")
+
+
+@dataclass(frozen=True)
+class LayerDesign:
+    """Prism layers sized for wall functions from a flat-plate skin-friction estimate."""
+
+    first_thickness: float  # m
+    expansion: float
+    count: int
+    yplus_target: float  # at the first cell centre, at the design speed
+
+    @property
+    def total_thickness(self) -> float:
+        e = self.expansion
+        return self.first_thickness * (e**self.count - 1.0) / (e - 1.0)
+
+    @property
+    def final_thickness(self) -> float:
+        return self.first_thickness * self.expansion ** (self.count - 1)
+
+
+def friction_velocity(speed: float, length: float, nu: float) -> float:
+    """u_tau from the ITTC-1957 line Cf = 0.075 / (log10 Re - 2)^2, an average over the hull."""
+    reynolds = speed * length / nu
+    cf = 0.075 / (math.log10(reynolds) - 2.0) ** 2
+    return speed * math.sqrt(cf / 2.0)
+
+
+def first_cell_yplus(first_thickness: float, speed: float, length: float, nu: float) -> float:
+    """y+ at the centre of the first prism cell (what OpenFOAM's yPlus reports)."""
+    return friction_velocity(speed, length, nu) * 0.5 * first_thickness / nu
+
+
+@dataclass(frozen=True)
+class MeshDesign:
+    """Everything that sets the mesh of one body at one level."""
+
+    level: str
+    length: float  # reference length L, m
+    body_radius: float  # largest distance of the body from the x axis, m
+    body_x_min: float  # aft end of the body, m
+    body_x_max: float  # nose, m
+    design_speed: float = 3.344  # m/s: 6.5 knots, the speed of Roddy's captive tests
+    nu: float = 0.001053 / 998.55  # water at 18 C (Roddy 1990)
+    domain_half_width_L: float = 4.0
+    sphere_radius_L: float = 2.0
+    coarse_base_cell_L: float = 0.235  # base (blockMesh) cell of the coarse level, in L
+    hull_surface_level: int = 5
+    appendage_extra_level: int = 1  # sail and appendages are thin: finer surface cells there
+    sphere_surface_level: int = 2
+    sphere_inside_level: int = 1
+    yplus_target: float = 50.0
+    layer_expansion: float = 1.3
+    final_layer_fraction: float = 0.3  # final layer thickness over the surface cell size
+    max_layers: int = 8
+    min_layers: int = 3
+
+    def __post_init__(self):
+        if self.level not in LEVELS:
+            raise ConfigurationError(f"unknown mesh level {self.level!r}; choose one of {', '.join(LEVELS)}")
+
+    @property
+    def half_width(self) -> float:
+        return self.domain_half_width_L * self.length
+
+    @property
+    def sphere_radius(self) -> float:
+        return self.sphere_radius_L * self.length
+
+    @property
+    def base_cells(self) -> int:
+        """Base cells along each side of the cube."""
+        target = self.coarse_base_cell_L * self.length / REFINEMENT_RATIO ** LEVELS.index(self.level)
+        return max(4, round(2.0 * self.half_width / target))
+
+    @property
+    def base_cell(self) -> float:
+        return 2.0 * self.half_width / self.base_cells
+
+    def cell_at(self, level: int) -> float:
+        return self.base_cell / 2**level
+
+    @property
+    def hull_cell(self) -> float:
+        return self.cell_at(self.hull_surface_level)
+
+    def layers(self) -> LayerDesign:
+        u_tau = friction_velocity(self.design_speed, self.length, self.nu)
+        first = 2.0 * self.yplus_target * self.nu / u_tau
+        wanted_final = self.final_layer_fraction * self.hull_cell
+        e = self.layer_expansion
+        count = 1 + math.ceil(math.log(max(wanted_final / first, 1.0)) / math.log(e))
+        count = max(self.min_layers, min(self.max_layers, count))
+        return LayerDesign(first, e, count, self.yplus_target)
+
+    def location_in_mesh(self) -> tuple[float, float, float]:
+        """A point in the fluid, outside the sphere and off every cell face (snappy needs one)."""
+        r = 0.5 * (self.sphere_radius + self.half_width)
+        return (r + 0.0123, 0.0137, 0.0171)

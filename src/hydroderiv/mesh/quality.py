@@ -1,0 +1,91 @@
+"""Mesh quality: the checkMesh gate, prism-layer coverage and the snapped sphere interface."""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import HydroderivError
+
+
+class MeshQualityError(HydroderivError):
+    """checkMesh found the mesh unusable; the message names the failed checks and the log."""
+
+
+def parse_check_mesh(text: str) -> dict:
+    """Cell count, pass/fail and the named problems ('***' lines) from a checkMesh log."""
+    cells = re.search(r"^\s*cells:\s+(\d+)", text, re.M)
+    failed = re.search(r"Failed (\d+) mesh checks", text)
+    skew = re.search(r"Max skewness = ([\d.eE+-]+)", text)
+    nonortho = re.search(r"Mesh non-orthogonality Max: ([\d.eE+-]+) average: ([\d.eE+-]+)", text)
+    return {
+        "ok": "Mesh OK." in text and failed is None,
+        "failed": int(failed.group(1)) if failed else 0,
+        "cells": int(cells.group(1)) if cells else None,
+        "problems": [line.strip(" *") for line in re.findall(r"^\s*\*\*\*.*$", text, re.M)],
+        "max_skewness": float(skew.group(1)) if skew else None,
+        "max_non_orthogonality": float(nonortho.group(1)) if nonortho else None,
+        "mean_non_orthogonality": float(nonortho.group(2)) if nonortho else None,
+    }
+
+
+def _boundary_list(path: Path, patch: str) -> np.ndarray:
+    """The values of a scalar field on one patch (uniform or nonuniform List<scalar>)."""
+    text = path.read_text()
+    start = re.search(rf"^\s*{re.escape(patch)}\s*$\s*\{{", text[text.index("boundaryField") :], re.M)
+    if start is None:
+        return np.empty(0)
+    block = text[text.index("boundaryField") + start.end() :]
+    nonuniform = re.match(r"[^}]*?value\s+nonuniform\s+List<scalar>\s*(\d+)\s*\((.*?)\)", block, re.S)
+    if nonuniform:
+        return np.array(nonuniform.group(2).split(), dtype=float)
+    uniform = re.match(r"[^}]*?value\s+uniform\s+([^;]+);", block, re.S)
+    return np.array([float(uniform.group(1))]) if uniform else np.empty(0)
+
+
+def layer_coverage(case: Path, patches: tuple[str, ...], layers_wanted: int) -> dict:
+    """Per patch: faces, % with any prism layer, % with all layers, mean layers (from snappy's layer field)."""
+    field = Path(case) / "0" / "nSurfaceLayers"
+    out = {}
+    if not field.is_file():
+        return out
+    for patch in patches:
+        n = _boundary_list(field, patch)
+        if len(n):
+            out[patch] = {
+                "faces": int(len(n)),
+                "any_layer_pct": round(100.0 * float((n > 0).mean()), 1),
+                "all_layers_pct": round(100.0 * float((n >= layers_wanted).mean()), 1),
+                "mean_layers": round(float(n.mean()), 2),
+            }
+    return out
+
+
+def _poly_list(path: Path) -> str:
+    text = path.read_text()
+    body_start = text.index("(", text.index("}", text.index("FoamFile")))
+    return text[body_start:]
+
+
+def sphere_interface_spread(case: Path, radius: float, zone: str = "rotatingZone") -> dict:
+    """How far the faces of the rotating zone's faceZone lie from the true sphere (face-centre radii)."""
+    mesh = Path(case) / "constant/polyMesh"
+    try:
+        points = np.array(re.findall(r"\(([^()]+)\)", _poly_list(mesh / "points")), dtype=object)
+        points = np.array([p.split() for p in points], dtype=float)
+        faces = re.findall(r"\d+\(([\d ]+)\)", _poly_list(mesh / "faces"))
+        zones = (mesh / "faceZones").read_text()
+        match = re.search(rf"{zone}\s*\{{.*?faceLabels\s+List<label>\s+(\d+)\s*\((.*?)\)", zones, re.S)
+        labels = np.array(match.group(2).split(), dtype=int)
+    except (FileNotFoundError, ValueError, AttributeError):
+        return {}
+    centres = np.array([points[np.array(faces[i].split(), dtype=int)].mean(axis=0) for i in labels])
+    r = np.linalg.norm(centres, axis=1)
+    return {
+        "faces": int(len(r)),
+        "face_radius_min_m": round(float(r.min()), 4),
+        "face_radius_max_m": round(float(r.max()), 4),
+        "max_deviation_pct_of_radius": round(100.0 * float(np.abs(r - radius).max()) / radius, 3),
+    }

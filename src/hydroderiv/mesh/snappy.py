@@ -1,0 +1,324 @@
+"""Building the single mesh with blockMesh + snappyHexMesh, then the checkMesh quality gate.
+
+The mesh case holds ``constant/polyMesh`` with the cellZone/faceZone ``rotatingZone`` (the snapped sphere),
+one wall patch per body component (all in the patch group ``bodyWalls``) and one far-field patch
+``farfield`` covering the six cube faces, so any inflow direction needs no re-meshing.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import shutil
+import time
+from dataclasses import asdict
+from pathlib import Path
+from typing import Callable
+
+from .._foam import quoted, write_foam_dict
+from .._io import atomic_write_text
+from ..geometry import Body
+from ..run.openfoam import run_application
+from .design import REFINEMENT_RATIO, MeshDesign
+from .quality import MeshQualityError, layer_coverage, parse_check_mesh, sphere_interface_spread
+
+FARFIELD = "farfield"
+ROTATING_ZONE = "rotatingZone"
+WALL_GROUP = "bodyWalls"
+SURFACE = "body"  # the body's STL in constant/triSurface is body.stl; its solids are the components
+REPORT_FILE = "mesh.json"
+
+
+def _vec(values) -> list[float]:
+    return [round(float(v), 10) for v in values]
+
+
+def _write_block_mesh(case: Path, d: MeshDesign) -> None:
+    h, n = d.half_width, d.base_cells
+    vertices = [[-h, -h, -h], [h, -h, -h], [h, h, -h], [-h, h, -h], [-h, -h, h], [h, -h, h], [h, h, h], [-h, h, h]]
+    faces = [[0, 4, 7, 3], [1, 2, 6, 5], [0, 1, 5, 4], [3, 7, 6, 2], [0, 3, 2, 1], [4, 5, 6, 7]]
+    write_foam_dict(
+        case / "system/blockMeshDict",
+        {
+            "scale": 1,
+            "vertices": vertices,
+            # foamlib has no literal for 'hex (...) (...) simpleGrading (...)'; OpenFOAM reads this token list
+            "blocks": ["hex", list(range(8)), [n, n, n], "simpleGrading", [1, 1, 1]],
+            "edges": [],
+            "boundary": [FARFIELD, {"type": "patch", "faces": faces}],
+            "mergePatchPairs": [],
+        },
+    )
+
+
+def _refinement_boxes(d: MeshDesign) -> dict[str, dict]:
+    """Shapes for refinement regions: around the body, and widening cones for the wake."""
+    L, R = d.length, d.body_radius
+    tail = d.body_x_min
+    return {
+        "bodyBox": {
+            "type": "searchableBox",
+            "min": _vec([d.body_x_min - 0.25 * L, -(R + 0.15 * L), -(R + 0.15 * L)]),
+            "max": _vec([d.body_x_max + 0.12 * L, R + 0.15 * L, R + 0.15 * L]),
+        },
+        # near wake: 1 L aft of the tail, opening at 25 deg (drift/pitch to 20 deg plus the turning wake)
+        "wakeNear": {
+            "type": "searchableCone",
+            "point1": _vec([tail + 0.1 * L, 0, 0]),
+            "radius1": R + 0.05 * L,
+            "innerRadius1": 0,
+            "point2": _vec([tail - 1.0 * L, 0, 0]),
+            "radius2": R + 0.05 * L + 1.0 * L * math.tan(math.radians(25)),
+            "innerRadius2": 0,
+        },
+        # far wake, up to the sphere, opening at 30 deg
+        "wakeFar": {
+            "type": "searchableCone",
+            "point1": _vec([tail + 0.1 * L, 0, 0]),
+            "radius1": R + 0.1 * L,
+            "innerRadius1": 0,
+            "point2": _vec([-0.97 * d.sphere_radius, 0, 0]),
+            "radius2": R + 0.1 * L + (0.97 * d.sphere_radius + tail) * math.tan(math.radians(30)),
+            "innerRadius2": 0,
+        },
+    }
+
+
+def _mesh_quality_controls() -> dict:
+    # minTetQuality must stay positive: with -1e30 snappy keeps every layer but leaves negative
+    # decomposition tets that make simpleFoam diverge within ~20 iterations.
+    base = {
+        "maxNonOrtho": 65,
+        "maxBoundarySkewness": 20,
+        "maxInternalSkewness": 4,
+        "maxConcave": 80,
+        "minVol": 1e-13,
+        "minTetQuality": 1e-15,
+        "minArea": -1,
+        "minTwist": 0.02,
+        "minDeterminant": 0.001,
+        "minFaceWeight": 0.05,
+        "minVolRatio": 0.01,
+        "minTriangleTwist": -1,
+        "nSmoothScale": 4,
+        "errorReduction": 0.75,
+    }
+    return {**base, "relaxed": {"maxNonOrtho": 75}}
+
+
+def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> None:
+    boxes = _refinement_boxes(d)
+    hull_level = d.hull_surface_level
+    fine_level = hull_level + d.appendage_extra_level
+    region_levels = {c: (hull_level if c == "hull" else fine_level) for c in components}
+    layers = d.layers()
+    location = _vec(d.location_in_mesh())
+    regions = {c: {"level": [lv, lv], "patchInfo": {"type": "wall", "inGroups": [WALL_GROUP]}} for c, lv in region_levels.items()}
+    geometry = {
+        f"{SURFACE}.stl": {"type": "triSurfaceMesh", "name": SURFACE, "regions": {c: {"name": c} for c in components}},
+        ROTATING_ZONE: {"type": "searchableSphere", "centre": [0, 0, 0], "radius": d.sphere_radius},
+        **boxes,
+    }
+    castellated = {
+        "maxLocalCells": 5_000_000,
+        "maxGlobalCells": 50_000_000,
+        "minRefinementCells": 10,
+        "maxLoadUnbalance": 0.10,
+        "nCellsBetweenLevels": 3,
+        "features": [{"file": quoted(f"{SURFACE}.eMesh"), "level": fine_level}],
+        "refinementSurfaces": {
+            SURFACE: {"level": [hull_level, hull_level], "regions": regions},
+            # the snapped sphere: faceZone + cellZone of the rotating frame
+            ROTATING_ZONE: {
+                "level": [d.sphere_surface_level, d.sphere_surface_level],
+                "faceZone": ROTATING_ZONE,
+                "cellZone": ROTATING_ZONE,
+                "cellZoneInside": "inside",
+            },
+        },
+        "resolveFeatureAngle": 30,
+        "refinementRegions": {
+            ROTATING_ZONE: {"mode": "inside", "levels": [[1e15, d.sphere_inside_level]]},
+            "wakeFar": {"mode": "inside", "levels": [[1e15, 2]]},
+            "wakeNear": {"mode": "inside", "levels": [[1e15, 3]]},
+            "bodyBox": {"mode": "inside", "levels": [[1e15, 3]]},
+            SURFACE: {"mode": "distance", "levels": [[0.03 * d.length, 4]]},
+        },
+        "locationInMesh": location,
+        "allowFreeStandingZoneFaces": True,
+    }
+    write_foam_dict(
+        case / "system/snappyHexMeshDict",
+        {
+            "castellatedMesh": True,
+            "snap": True,
+            "addLayers": True,
+            "geometry": geometry,
+            "castellatedMeshControls": castellated,
+            "snapControls": {
+                "nSmoothPatch": 5,
+                "tolerance": 2.0,
+                "nSolveIter": 100,
+                "nRelaxIter": 8,
+                "nFeatureSnapIter": 10,
+                "implicitFeatureSnap": False,
+                "explicitFeatureSnap": True,
+                "multiRegionFeatureSnap": False,
+            },
+            "addLayersControls": {
+                "relativeSizes": False,  # absolute first-layer thickness, sized for y+
+                "firstLayerThickness": round(layers.first_thickness, 7),
+                "expansionRatio": layers.expansion,
+                "minThickness": round(0.25 * layers.total_thickness, 6),
+                "layers": {c: {"nSurfaceLayers": layers.count} for c in components},
+                "nGrow": 0,
+                "featureAngle": 180,
+                "slipFeatureAngle": 30,
+                "nRelaxIter": 5,
+                "nSmoothSurfaceNormals": 1,
+                "nSmoothNormals": 3,
+                "nSmoothThickness": 10,
+                "maxFaceThicknessRatio": 0.5,
+                "maxThicknessToMedialRatio": 0.5,
+                "minMedialAxisAngle": 90,
+                "nBufferCellsNoExtrude": 0,
+                "nLayerIter": 50,
+                "nRelaxedIter": 10,
+            },
+            "meshQualityControls": _mesh_quality_controls(),
+            "writeFlags": ["scalarLevels", "layerSets", "layerFields"],
+            "mergeTolerance": 1e-6,
+        },
+    )
+    # A castellation-only first pass that refines boxes around the body. v1912 refines at surfaces
+    # before refinement regions, and a slender hull inside ~1 m base cells cuts no base-mesh edge, so
+    # without this pass the surface refinement never sees it.
+    R, L = d.body_radius, d.length
+    tight = {
+        "type": "searchableBox",
+        "min": _vec([d.body_x_min - 0.05 * L, -(R + 0.05 * L), -(R + 0.05 * L)]),
+        "max": _vec([d.body_x_max + 0.05 * L, R + 0.05 * L, R + 0.05 * L]),
+    }
+    write_foam_dict(
+        case / "system/snappyHexMeshDict.pre",
+        {
+            "castellatedMesh": True,
+            "snap": False,
+            "addLayers": False,
+            "geometry": {"bodyBox": boxes["bodyBox"], "bodyTight": tight},
+            "castellatedMeshControls": {
+                **{k: castellated[k] for k in ("maxLocalCells", "maxGlobalCells", "maxLoadUnbalance", "nCellsBetweenLevels")},
+                "minRefinementCells": 0,
+                "features": [],
+                "refinementSurfaces": {},
+                "resolveFeatureAngle": 30,
+                "refinementRegions": {
+                    "bodyBox": {"mode": "inside", "levels": [[1e15, 2]]},
+                    "bodyTight": {"mode": "inside", "levels": [[1e15, 3]]},
+                },
+                "locationInMesh": location,
+                "allowFreeStandingZoneFaces": True,
+            },
+            "snapControls": {"nSmoothPatch": 3, "tolerance": 2.0, "nSolveIter": 30, "nRelaxIter": 5},
+            "addLayersControls": {"layers": {}, "relativeSizes": True, "expansionRatio": 1, "finalLayerThickness": 0.3,
+                                  "minThickness": 0.1, "nGrow": 0, "featureAngle": 60, "nRelaxIter": 3,
+                                  "nSmoothSurfaceNormals": 1, "nSmoothNormals": 3, "nSmoothThickness": 10,
+                                  "maxFaceThicknessRatio": 0.5, "maxThicknessToMedialRatio": 0.3,
+                                  "minMedialAxisAngle": 90, "nBufferCellsNoExtrude": 0, "nLayerIter": 50},
+            "meshQualityControls": _mesh_quality_controls(),
+            "mergeTolerance": 1e-6,
+        },
+    )
+    write_foam_dict(
+        case / "system/surfaceFeatureExtractDict",
+        {
+            f"{SURFACE}.stl": {
+                "extractionMethod": "extractFromSurface",
+                "includedAngle": 150,
+                "subsetFeatures": {"nonManifoldEdges": False, "openEdges": True},
+                "writeObj": False,
+            }
+        },
+    )
+
+
+def write_mesh_case(case: Path, body: Body, design: MeshDesign) -> None:
+    """Write every dictionary meshing needs, and the body surface, into ``case``."""
+    from ..case.numerics import write_numerics  # snappy reads fvSchemes/fvSolution too
+
+    case.mkdir(parents=True, exist_ok=True)
+    tri = case / "constant/triSurface"
+    tri.mkdir(parents=True, exist_ok=True)
+    body.write(tri)
+    (tri / "body.json").rename(case / "body.json")
+    write_foam_dict(case / "system/controlDict", {"application": "snappyHexMesh", "startFrom": "latestTime",
+                                                  "startTime": 0, "stopAt": "endTime", "endTime": 0, "deltaT": 1,
+                                                  "writeControl": "timeStep", "writeInterval": 1})
+    write_numerics(case)
+    _write_block_mesh(case, design)
+    _write_snappy(case, design, body.component_names)
+
+
+def build_mesh(
+    body: Body,
+    level: str,
+    case: str | Path,
+    design_speed: float = 3.344,
+    log: Callable[[str], None] = print,
+) -> dict:
+    """Mesh ``body`` at ``level`` into ``case`` (reusing a finished mesh there) and return its report.
+
+    Raises :class:`MeshQualityError` when checkMesh fails; the report names the failed checks.
+    """
+    case = Path(case)
+    report_path = case / REPORT_FILE
+    if report_path.is_file():
+        report = json.loads(report_path.read_text())
+        log(f"mesh {case} exists ({report['cells']} cells); reusing it")
+        return report
+    if case.exists():
+        shutil.rmtree(case)  # an unfinished mesh from an interrupted run
+    lo, hi = body.surface.bounds
+    radius = float(max(abs(lo[1]), abs(hi[1]), abs(lo[2]), abs(hi[2])))
+    design = MeshDesign(level, body.reference.length, radius, float(lo[0]), float(hi[0]), design_speed=design_speed)
+    write_mesh_case(case, body, design)
+    timings = {}
+    steps = [
+        ("blockMesh", ["blockMesh"]),
+        ("surfaceFeatureExtract", ["surfaceFeatureExtract"]),
+        ("snappyHexMesh.pre", ["snappyHexMesh", "-overwrite", "-dict", "system/snappyHexMeshDict.pre"]),
+        ("snappyHexMesh", ["snappyHexMesh", "-overwrite"]),
+        ("checkMesh", ["checkMesh", "-constant"]),
+    ]
+    for name, command in steps:
+        log(f"  {name} ...")
+        t0 = time.monotonic()
+        run_application(case, command, log_name=name)
+        timings[name] = round(time.monotonic() - t0, 1)
+    check = parse_check_mesh((case / "log.checkMesh").read_text())
+    if not check["ok"]:
+        raise MeshQualityError(f"checkMesh failed {check['failed']} checks on {case}: {'; '.join(check['problems'])}; log: {case / 'log.checkMesh'}")
+    layers = design.layers()
+    report = {
+        "level": level,
+        "cells": check["cells"],
+        "checkMesh": check,
+        "meshing_seconds": round(sum(timings.values()), 1),
+        "timings": timings,
+        "base_cell_m": design.base_cell,
+        "hull_surface_cell_m": design.hull_cell,
+        "refinement_ratio": REFINEMENT_RATIO,
+        "layers": {**asdict(layers), "total_thickness": layers.total_thickness},
+        "layer_coverage": layer_coverage(case, body.component_names, layers.count),
+        "design_yplus": {
+            "speed_m_s": design_speed,
+            "first_cell_centre": round(layers.yplus_target, 1),
+        },
+        "rotating_sphere": {"radius_m": design.sphere_radius, **sphere_interface_spread(case, design.sphere_radius)},
+        "components": list(body.component_names),
+        "design": asdict(design),
+    }
+    for tmp in ("0",):  # snappy's layer fields (read above) are not initial conditions
+        shutil.rmtree(case / tmp, ignore_errors=True)
+    atomic_write_text(report_path, json.dumps(report, indent=2) + "\n")
+    return report

@@ -1,0 +1,104 @@
+"""One condition from set-up to a saved result, resumable and atomic.
+
+A finished condition is marked by its ``result.json`` (written atomically, last). Running it again
+reads that file instead of recomputing. An interrupted condition restarts from its latest written
+iteration.
+"""
+
+from __future__ import annotations
+
+import json
+import shutil
+from dataclasses import asdict
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from .._io import atomic_write_text
+from ..case.conditions import Condition
+from ..case.setup import CaseSettings, latest_time_dir, write_condition_case
+from ..forces import COEFFICIENT_NAMES, PrimeScales
+from .monitor import ConvergenceCriterion
+from .openfoam import run_application
+from .solver import Progress, run_steady
+
+RESULT_FILE = "result.json"
+
+
+def read_result(case: Path) -> dict | None:
+    path = Path(case) / RESULT_FILE
+    return json.loads(path.read_text()) if path.is_file() else None
+
+
+def _yplus_summary(case: Path) -> dict:
+    """min / mean / max y+ per wall patch at the last write (from the yPlus function object)."""
+    out = {}
+    for path in sorted((case / "postProcessing/yPlus").glob("*/yPlus*.dat")):
+        for line in path.read_text().splitlines():
+            if line.startswith("#") or not line.strip():
+                continue
+            words = line.split()
+            if len(words) >= 5:
+                out[words[1]] = {"min": float(words[2]), "max": float(words[3]), "mean": float(words[4])}
+    return out
+
+
+def _resumable(case: Path, n_procs: int) -> bool:
+    """True if an interrupted run left written iterations to continue from."""
+    if n_procs > 1:
+        processor = case / "processor0"
+        return processor.is_dir() and latest_time_dir(processor) is not None
+    return latest_time_dir(case) is not None
+
+
+def run_condition(
+    case: str | Path,
+    mesh_case: str | Path,
+    condition: Condition,
+    settings: CaseSettings,
+    criterion: ConvergenceCriterion = ConvergenceCriterion(),
+    warm_start: Path | None = None,
+    on_progress: Callable[[Progress], None] | None = None,
+) -> dict:
+    """Run ``condition`` on the mesh of ``mesh_case`` in ``case`` and return its result record."""
+    case = Path(case)
+    done = read_result(case)
+    if done is not None:
+        return done
+    n = settings.n_procs
+    resumed = case.is_dir() and _resumable(case, n)
+    if not resumed:
+        if case.exists():
+            shutil.rmtree(case)
+        write_condition_case(case, mesh_case, condition, settings, warm_start)
+        if n > 1:
+            run_application(case, ["decomposePar", "-force"], log_name="decomposePar")
+    scales = PrimeScales(settings.fluid.rho, condition.speed, settings.length)
+    result = run_steady(case, scales, settings.components, criterion, n, on_progress)
+    if n > 1:
+        run_application(case, ["reconstructPar", "-latestTime"], log_name="reconstructPar")
+        for processor in case.glob("processor*"):
+            shutil.rmtree(processor)
+    force_scale, moment_scale = scales.force, scales.moment
+    record = {
+        "condition": asdict(condition),
+        "name": condition.name,
+        "converged": result.converged,
+        "iterations": result.iterations,
+        "wall_seconds": round(result.wall_time, 1),
+        "resumed": resumed,
+        "warm_start": str(warm_start) if warm_start else None,
+        "n_procs": n,
+        "coefficients": dict(zip(COEFFICIENT_NAMES, map(float, result.coefficients))),
+        "force_N": (result.coefficients[:3] * force_scale).tolist(),
+        "moment_Nm": (result.coefficients[3:] * moment_scale).tolist(),
+        "components": {
+            name: dict(zip(COEFFICIENT_NAMES, map(float, values))) for name, values in result.components.items()
+        },
+        "window_spread": np.ptp(result.history[-criterion.window :], axis=0).tolist(),
+        "yplus": _yplus_summary(case),
+        "reference": {"rho": settings.fluid.rho, "speed": condition.speed, "length": settings.length},
+    }
+    atomic_write_text(case / RESULT_FILE, json.dumps(record, indent=2) + "\n")
+    return record
