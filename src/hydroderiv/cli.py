@@ -5,13 +5,17 @@ from __future__ import annotations
 import argparse
 import sys
 from pathlib import Path
+from typing import Callable
 
 from rich.console import Console
 from rich.table import Table
 
 from .errors import HydroderivError
+from .experiments import RESISTANCE
 from .geometry import CONFIGURATIONS, Body, load_user_body, suboff_body
 from .geometry.suboff import CONFIGURATION_TITLES
+from .mesh import LEVELS, build_mesh
+from .run.monitor import ConvergenceCriterion
 
 console = Console()
 
@@ -46,6 +50,116 @@ def _geometry(args: argparse.Namespace) -> int:
     return 0
 
 
+def _progress_printer(label: Callable[[object], str], every: int = 25):
+    """A progress callback printing iteration, residuals, forces and their convergence every few iterations."""
+    last = {"iteration": -1}
+
+    def show(key, p) -> None:
+        if p.coefficients is None or p.iteration - last["iteration"] < every:
+            return
+        last["iteration"] = p.iteration
+        residuals = " ".join(f"{k} {v:.1e}" for k, v in p.residuals.items())
+        x, y, z, k, m, n = p.coefficients
+        spread = "-" if p.spread is None else f"{p.spread.max():.2f}"
+        console.print(
+            f"  {label(key)} it {p.iteration:5d} | {residuals} | X' {x:+.3e} Y' {y:+.2e} Z' {z:+.2e} "
+            f"M' {m:+.2e} N' {n:+.2e} | window spread/tol {spread} | {p.elapsed:.0f} s",
+            highlight=False,
+        )
+
+    return show
+
+
+def _mesh(args: argparse.Namespace) -> int:
+    body = Body.read(args.body) if args.body else suboff_body(args.config)
+    report = build_mesh(body, args.level, args.out, design_speed=args.design_speed, log=console.print)
+    table = Table(title=f"mesh {args.out} ({body.name}, {args.level})", show_header=False)
+    for key in ("cells", "meshing_seconds", "base_cell_m", "hull_surface_cell_m", "refinement_ratio"):
+        table.add_row(key, str(report[key]))
+    table.add_row("checkMesh", "OK" if report["checkMesh"]["ok"] else "FAILED")
+    table.add_row("design y+ (first cell centre)", f"{report['design_yplus']['first_cell_centre']} at {report['design_yplus']['speed_m_s']} m/s")
+    for patch, cover in report["layer_coverage"].items():
+        table.add_row(f"layers on {patch}", f"{cover['any_layer_pct']}% any, {cover['all_layers_pct']}% all, mean {cover['mean_layers']}")
+    sphere = report["rotating_sphere"]
+    table.add_row("rotating sphere", f"R = {sphere['radius_m']:.3f} m, faceZone max deviation {sphere.get('max_deviation_pct_of_radius')} % of R")
+    console.print(table)
+    return 0
+
+
+def _resistance(args: argparse.Namespace) -> int:
+    from .report.resistance import plot_resistance, resistance_table
+    from .studies.resistance import max_abs_error_pct, run_resistance
+
+    config = args.config.upper()
+    speeds = args.speeds or [k for k, _ in RESISTANCE.get(config, {"points": []})["points"]]
+    if not speeds:
+        raise HydroderivError(f"no measured speeds for {config}; give --speeds")
+    results = Path(args.results) if args.results else Path(args.work) / "resistance.json"
+    criterion = ConvergenceCriterion(max_iterations=args.max_iterations)
+    points = run_resistance(
+        args.work, args.level, speeds, config=config, body_dir=args.body, n_procs=args.np, criterion=criterion,
+        results_path=results, log=console.print,
+        on_progress=_progress_printer(lambda knots: f"{knots:5.2f} kn"),
+    )
+    title = f"{points[0]['body']} resistance, {args.level} mesh ({points[0]['cells']} cells)"
+    console.print(resistance_table(points, title))
+    plot = plot_resistance(points, results.with_suffix(".png"), title)
+    worst = max_abs_error_pct(points)
+    console.print(f"results: {results}, plot: {plot}" + (f"; largest error {worst:.1f} %" if worst is not None else ""))
+    return 0
+
+
+def _study_run(args: argparse.Namespace) -> int:
+    from .studies.study import Study, run_study
+
+    study = Study.load(args.file)
+    console.print(f"study {study.path}: {len(study.conditions)} conditions on the {study.level} mesh, work {study.work}")
+    run_study(study, log=console.print, on_progress=_progress_printer(lambda c: c.name),
+              warm_start=not args.cold)
+    return _derivatives(args) if not args.no_table else _study_status(args)
+
+
+def _study_status(args: argparse.Namespace) -> int:
+    from .studies.study import Study
+
+    study = Study.load(args.file)
+    states = study.status()
+    table = Table(title=f"study {study.path} ({study.work})")
+    table.add_column("state")
+    table.add_column("count", justify="right")
+    table.add_column("conditions")
+    for state, names in states.items():
+        table.add_row(state, str(len(names)), ", ".join(names))
+    console.print(table)
+    return 0
+
+
+def _derivatives(args: argparse.Namespace) -> int:
+    from .derivatives.table import derivative_table, write_table
+    from .run.condition import read_result
+    from .studies.study import Study
+
+    study = Study.load(args.file)
+    results = [r for c in study.conditions if (r := read_result(study.workspace.condition_dir(c.name)))]
+    rows = derivative_table(results, reference_key=study.body)
+    if not rows:
+        raise HydroderivError(f"no sweep of {study.path} has enough finished conditions for a derivative yet")
+    table = Table(title=f"derivatives, {study.body or study.body_dir} on the {study.level} mesh (prime units, L-based)")
+    for column in ("derivative", "fit", "std. error", "single-point", "points", "experiment", "error (%)", "exp. unc. (%)"):
+        table.add_column(column, justify="right")
+    for row in rows:
+        table.add_row(row.name, f"{row.value:+.5f}", f"{row.stderr:.1e}", f"{row.single_point:+.5f}", str(row.n_points),
+                      "-" if row.reference is None else f"{row.reference:+.6f}",
+                      "-" if row.error_pct is None else f"{row.error_pct:+.1f}", f"{row.experimental_uncertainty_pct:.0f}")
+    console.print(table)
+    out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
+    meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": study.body or str(study.body_dir),
+            "conditions": len(results)}
+    paths = write_table(rows, out, meta)
+    console.print(f"written: {paths[0]}, {paths[1]}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="hydroderiv",
@@ -68,6 +182,42 @@ def build_parser() -> argparse.ArgumentParser:
     geo.add_argument("--name", help="name of the body (with --stl; default: the file name)")
     geo.add_argument("--out", required=True, help="output directory")
     geo.set_defaults(func=_geometry)
+
+    mesh = steps.add_parser("mesh", help="build the single mesh of a body (every condition runs on it)")
+    mesh.add_argument("--config", default="AFF-8", help="SUBOFF configuration (ignored with --body)")
+    mesh.add_argument("--body", help="a body directory written by `hydroderiv geometry`")
+    mesh.add_argument("--level", default="coarse", choices=LEVELS)
+    mesh.add_argument("--design-speed", type=float, default=3.344, help="speed the prism layers are sized for, m/s")
+    mesh.add_argument("--out", required=True, help="mesh case directory")
+    mesh.set_defaults(func=_mesh)
+
+    res = steps.add_parser("resistance", help="straight-ahead resistance against speed on one mesh, with the experiment")
+    res.add_argument("--config", default="AFF-8", help="SUBOFF configuration (its measured speeds are the default)")
+    res.add_argument("--body", help="a body directory written by `hydroderiv geometry` instead of SUBOFF")
+    res.add_argument("--level", default="coarse", choices=LEVELS)
+    res.add_argument("--speeds", type=float, nargs="+", help="speeds in knots")
+    res.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
+    res.add_argument("--max-iterations", type=int, default=3000)
+    res.add_argument("--work", required=True, help="working directory (geometry, mesh, cases); resumable")
+    res.add_argument("--results", help="results JSON (default WORK/resistance.json); the plot goes beside it")
+    res.set_defaults(func=_resistance)
+
+    study = steps.add_parser("study", help="captive-test studies from a TOML file (see studies/study.py)")
+    actions = study.add_subparsers(dest="action", required=True, metavar="ACTION")
+    run = actions.add_parser("run", help="mesh once, run every condition (resumable), print the derivative table")
+    run.add_argument("file")
+    run.add_argument("--cold", action="store_true", help="start every condition from uniform flow (no warm start)")
+    run.add_argument("--no-table", action="store_true", help="skip the derivative table at the end")
+    run.add_argument("--out", help="derivative table JSON (default WORK/derivatives.json); CSV beside it")
+    run.set_defaults(func=_study_run)
+    status = actions.add_parser("status", help="what is done, running, failed and left")
+    status.add_argument("file")
+    status.set_defaults(func=_study_status)
+
+    der = steps.add_parser("derivatives", help="fit the derivative table from a study's finished conditions")
+    der.add_argument("file", help="the study TOML file")
+    der.add_argument("--out", help="JSON output (default WORK/derivatives.json); CSV beside it")
+    der.set_defaults(func=_derivatives)
     return parser
 
 

@@ -27,6 +27,9 @@ from ..errors import ConfigurationError
 
 KNOT = 1852.0 / 3600.0  # m/s
 
+# The condition variables a study can sweep, one at a time about straight-ahead.
+SWEEP_KEYS = ("drift_deg", "pitch_deg", "yaw_rate_prime", "pitch_rate_prime")
+
 MAX_INCIDENCE_DEG = 30.0  # the far field accepts any inflow direction; beyond this the wake leaves its refinement
 MAX_RATE_PRIME = 1.0  # r' = L/R0 = 1 puts the turn centre one body length away, beyond any rotating-arm test
 

@@ -1,0 +1,5 @@
+"""Hydrodynamic derivatives from captive conditions: the fitting estimator and single-point definitions."""
+
+from .fit import DerivativeFit
+
+__all__ = ["DerivativeFit"]

@@ -1,0 +1,78 @@
+"""Fitting hydrodynamic derivatives: an estimator in the scikit-learn shape.
+
+A derivative such as Y'v is the slope at the origin of a force coefficient against its motion variable
+(Y' against v'). The fit carries a nonlinear term so that points at larger incidence or rate do not bias
+the slope: Y' = Yv v' + Yv|v| v'|v'| (Gertler & Hagen 1967), or a cubic term. The model is odd in the
+motion variable, as a mirror-symmetric body requires for these pairs; an optional offset absorbs a
+small asymmetry (the sail makes Z' and M' non-zero at w' = 0).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..errors import ConfigurationError
+
+NONLINEAR_TERMS = {
+    "abs": lambda x: x * np.abs(x),  # Gertler-Hagen v|v|
+    "cubic": lambda x: x**3,
+    "none": None,
+}
+
+
+class DerivativeFit:
+    """Least-squares fit of ``y = c0 + slope x + nonlinear x|x|`` (or ``x^3``).
+
+    Parameters (configuration only, as in scikit-learn): ``nonlinear`` in {'abs', 'cubic', 'none'} and
+    ``fit_offset``. :meth:`fit` returns ``self`` with the fitted attributes ``slope_``, ``slope_stderr_``,
+    ``nonlinear_``, ``nonlinear_stderr_``, ``offset_``, ``residual_rms_`` and ``n_points_``.
+    """
+
+    def __init__(self, nonlinear: str = "abs", fit_offset: bool = False):
+        self.nonlinear = nonlinear
+        self.fit_offset = fit_offset
+
+    def _design(self, x: np.ndarray) -> np.ndarray:
+        if self.nonlinear not in NONLINEAR_TERMS:
+            raise ConfigurationError(f"unknown nonlinear term {self.nonlinear!r}; choose one of {', '.join(NONLINEAR_TERMS)}")
+        columns = [x]
+        term = NONLINEAR_TERMS[self.nonlinear]
+        if term is not None:
+            columns.append(term(x))
+        if self.fit_offset:
+            columns.append(np.ones_like(x))
+        return np.column_stack(columns)
+
+    def fit(self, x, y) -> DerivativeFit:
+        x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+        design = self._design(x)
+        n, p = design.shape
+        if n < p or len(np.unique(np.abs(x[x != 0]))) < p - int(self.fit_offset):
+            raise ConfigurationError(
+                f"{n} points at {len(np.unique(np.abs(x)))} distinct magnitudes cannot determine {p} terms; "
+                "add conditions to the sweep"
+            )
+        coef, *_ = np.linalg.lstsq(design, y, rcond=None)
+        residual = y - design @ coef
+        dof = n - p
+        # Standard errors from the residual variance; with no spare points there is none to estimate.
+        sigma2 = float(residual @ residual) / dof if dof > 0 else np.nan
+        cov = sigma2 * np.linalg.inv(design.T @ design)
+        stderr = np.sqrt(np.diag(cov))
+        self.slope_, self.slope_stderr_ = float(coef[0]), float(stderr[0])
+        has_nonlinear = NONLINEAR_TERMS[self.nonlinear] is not None
+        self.nonlinear_ = float(coef[1]) if has_nonlinear else 0.0
+        self.nonlinear_stderr_ = float(stderr[1]) if has_nonlinear else 0.0
+        self.offset_ = float(coef[-1]) if self.fit_offset else 0.0
+        self.residual_rms_ = float(np.sqrt(np.mean(residual**2)))
+        self.n_points_ = n
+        return self
+
+    def predict(self, x) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        coef = [self.slope_]
+        if NONLINEAR_TERMS[self.nonlinear] is not None:
+            coef.append(self.nonlinear_)
+        if self.fit_offset:
+            coef.append(self.offset_)
+        return self._design(x) @ np.array(coef)

@@ -1,0 +1,124 @@
+"""The Gertler-Hagen derivative table from a study's finished conditions.
+
+Motion variables (prime system on L): v' = v/U and w' = w/U from drift and pitch (see
+:mod:`hydroderiv.case.conditions` for the signs), r' = rL/U and q' = qL/U from turns. Each derivative
+is the linear term of a :class:`DerivativeFit` over its one-variable sweep (straight-ahead included):
+
+    Y'v, N'v  from drift        Z'w, M'w  from pitch
+    Y'r, N'r  from yaw turns    Z'q, M'q  from pitch turns
+
+The seed paper's single-point definitions are reported beside them, e.g. Y'v = Y'/(u'v')
+(= -Y'/(cos b sin b)) and Y'r = Y'/r', averaged over the sweep's non-zero points.
+"""
+
+from __future__ import annotations
+
+import csv
+import io
+import json
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from .._io import atomic_write_text
+from ..case import Condition
+from ..case.conditions import SWEEP_KEYS
+from ..experiments import DERIVATIVES, DERIVATIVE_UNCERTAINTY
+from .fit import DerivativeFit
+
+# derivative -> (sweep variable of Condition, force coefficient, static or rotary)
+DEFINITIONS = {
+    "Yv": ("drift_deg", "Y", "static"),
+    "Nv": ("drift_deg", "N", "static"),
+    "Zw": ("pitch_deg", "Z", "static"),
+    "Mw": ("pitch_deg", "M", "static"),
+    "Yr": ("yaw_rate_prime", "Y", "rotary"),
+    "Nr": ("yaw_rate_prime", "N", "rotary"),
+    "Zq": ("pitch_rate_prime", "Z", "rotary"),
+    "Mq": ("pitch_rate_prime", "M", "rotary"),
+}
+
+
+def motion_variable(condition: Condition, sweep: str) -> tuple[float, float]:
+    """(x, u') for a sweep: v' or w' for static sweeps, r' or q' for turns; u' is the axial velocity ratio."""
+    u, v, w = condition.body_velocity() / condition.speed
+    return {"drift_deg": v, "pitch_deg": w, "yaw_rate_prime": condition.yaw_rate_prime,
+            "pitch_rate_prime": condition.pitch_rate_prime}[sweep], u
+
+
+def _on_sweep(condition: Condition, sweep: str) -> bool:
+    """True for the straight-ahead condition and the conditions that vary only ``sweep``."""
+    return all(getattr(condition, k) == 0 for k in SWEEP_KEYS if k != sweep)
+
+
+@dataclass
+class DerivativeRow:
+    name: str
+    value: float
+    stderr: float
+    nonlinear: float
+    single_point: float
+    n_points: int
+    reference: float | None
+    error_pct: float | None
+    experimental_uncertainty_pct: float
+
+
+def derivative_table(
+    results: list[dict], reference_key: str | None = None, nonlinear: str = "abs", fit_offset: bool = True
+) -> list[DerivativeRow]:
+    """Fit every derivative whose sweep has enough points. ``results`` are condition result records."""
+    reference = DERIVATIVES.get(reference_key or "", {}).get("values", {})
+    rows = []
+    for name, (sweep, coefficient, kind) in DEFINITIONS.items():
+        xs, us, ys = [], [], []
+        for record in results:
+            condition = Condition(**record["condition"])
+            if not _on_sweep(condition, sweep):
+                continue
+            x, u = motion_variable(condition, sweep)
+            xs.append(x)
+            us.append(u)
+            ys.append(record["coefficients"][coefficient])
+        xs, us, ys = map(np.asarray, (xs, us, ys))
+        if len(np.unique(np.abs(xs[xs != 0]))) < 2:
+            continue  # this sweep was not run (or has too few magnitudes for a slope and a nonlinear term)
+        fit = DerivativeFit(nonlinear=nonlinear, fit_offset=fit_offset).fit(xs, ys)
+        nonzero = xs != 0
+        # single-point definitions: static Y'v = Y'/(u'v'); rotary Y'r = Y'/r'
+        denominators = xs[nonzero] * (us[nonzero] if kind == "static" else 1.0)
+        single = float(np.mean(ys[nonzero] / denominators))
+        ref = reference.get(name)
+        rows.append(
+            DerivativeRow(
+                name=name,
+                value=fit.slope_,
+                stderr=fit.slope_stderr_,
+                nonlinear=fit.nonlinear_,
+                single_point=single,
+                n_points=fit.n_points_,
+                reference=ref,
+                error_pct=100.0 * (fit.slope_ - ref) / abs(ref) if ref else None,
+                experimental_uncertainty_pct=100.0 * DERIVATIVE_UNCERTAINTY[kind],
+            )
+        )
+    return rows
+
+
+def write_table(rows: list[DerivativeRow], json_path: str | Path, meta: dict) -> tuple[Path, Path]:
+    """JSON (keys Yv, Nv, ... in prime units, plus details) and CSV beside it, both atomic."""
+    json_path = Path(json_path)
+    payload = {row.name: row.value for row in rows}
+    payload["details"] = {row.name: row.__dict__ for row in rows}
+    payload["meta"] = meta
+    atomic_write_text(json_path, json.dumps(payload, indent=2) + "\n")
+    buffer = io.StringIO()
+    writer = csv.writer(buffer)
+    columns = list(DerivativeRow.__dataclass_fields__)
+    writer.writerow(columns)
+    for row in rows:
+        writer.writerow([getattr(row, c) for c in columns])
+    csv_path = json_path.with_suffix(".csv")
+    atomic_write_text(csv_path, buffer.getvalue())
+    return json_path, csv_path

@@ -1,0 +1,1 @@
+"""Reports: tables on the terminal and plots for the validation record."""

@@ -1,0 +1,1 @@
+"""Studies: many conditions on one mesh (resistance sweeps, captive-test sweeps)."""

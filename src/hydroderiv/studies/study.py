@@ -1,0 +1,203 @@
+"""A captive-test study: one TOML file names the body, the mesh level, the speed and the sweeps.
+
+Example::
+
+    [study]
+    body = "AFF-8"            # a SUBOFF configuration, or body_dir = "path written by hydroderiv geometry"
+    level = "coarse"
+    speed_knots = 6.5
+    n_procs = 2
+    work = "runs/aff8-coarse" # optional; default: runs/<file stem>
+
+    [sweeps]                  # one variable at a time about straight-ahead
+    drift_deg = [-8, -4, 4, 8]
+    pitch_deg = [-8, -4, 4, 8]
+    yaw_rate_prime = [-0.2, -0.1, 0.1, 0.2]
+    pitch_rate_prime = []
+
+    [[conditions]]            # any further combined conditions
+    drift_deg = 4
+    yaw_rate_prime = 0.2
+
+    [convergence]             # optional, see ConvergenceCriterion
+    rel_tol = 0.005
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tomllib
+import traceback
+from dataclasses import dataclass, field, fields
+from pathlib import Path
+from typing import Callable
+
+import numpy as np
+
+from .._io import atomic_write_text
+from ..case import KNOT, Condition
+from ..case.conditions import SWEEP_KEYS
+from ..case.setup import CaseSettings, latest_time_dir
+from ..errors import ConfigurationError, HydroderivError
+from ..run.condition import read_result, run_condition
+from ..run.monitor import ConvergenceCriterion
+from ..run.solver import Progress
+from .workspace import Workspace, is_suboff
+
+FAILED_FILE = "failed.json"
+RUNNING_FILE = "running.pid"
+
+
+@dataclass(frozen=True)
+class Study:
+    path: Path
+    body: str | None
+    body_dir: Path | None
+    level: str
+    speed: float  # m/s
+    n_procs: int
+    work: Path
+    conditions: tuple[Condition, ...]
+    criterion: ConvergenceCriterion = field(default_factory=ConvergenceCriterion)
+
+    @classmethod
+    def load(cls, path: str | Path) -> Study:
+        path = Path(path)
+        try:
+            data = tomllib.loads(path.read_text())
+        except FileNotFoundError:
+            raise ConfigurationError(f"no study file {path}")
+        except tomllib.TOMLDecodeError as error:
+            raise ConfigurationError(f"{path}: not valid TOML: {error}")
+        head = data.get("study", {})
+        unknown = set(data) - {"study", "sweeps", "conditions", "convergence"}
+        if unknown:
+            raise ConfigurationError(f"{path}: unknown section(s) {', '.join(sorted(unknown))}")
+        body, body_dir = head.get("body"), head.get("body_dir")
+        if (body is None) == (body_dir is None):
+            raise ConfigurationError(f"{path}: [study] needs exactly one of body (a SUBOFF configuration) or body_dir")
+        if body is not None and not is_suboff(body):
+            raise ConfigurationError(f"{path}: unknown configuration {body!r}; use a SUBOFF name or body_dir")
+        if ("speed_knots" in head) == ("speed" in head):
+            raise ConfigurationError(f"{path}: [study] needs exactly one of speed (m/s) or speed_knots")
+        speed = float(head["speed"]) if "speed" in head else float(head["speed_knots"]) * KNOT
+        conditions = [Condition(speed)]
+        for key, values in data.get("sweeps", {}).items():
+            if key not in SWEEP_KEYS:
+                raise ConfigurationError(f"{path}: unknown sweep {key!r}; sweeps are {', '.join(SWEEP_KEYS)}")
+            conditions += [Condition(speed, **{key: float(v)}) for v in values]
+        for extra in data.get("conditions", []):
+            bad = set(extra) - set(SWEEP_KEYS)
+            if bad:
+                raise ConfigurationError(f"{path}: unknown condition keys {', '.join(sorted(bad))}")
+            conditions.append(Condition(speed, **{k: float(v) for k, v in extra.items()}))
+        unique = tuple(dict((c.name, c) for c in conditions).values())
+        allowed = {f.name for f in fields(ConvergenceCriterion)}
+        conv = data.get("convergence", {})
+        if set(conv) - allowed:
+            raise ConfigurationError(f"{path}: unknown convergence keys {', '.join(sorted(set(conv) - allowed))}")
+        return cls(
+            path=path,
+            body=body.upper() if body else None,
+            body_dir=Path(body_dir) if body_dir else None,
+            level=head.get("level", "coarse"),
+            speed=speed,
+            n_procs=int(head.get("n_procs", 2)),
+            work=Path(head.get("work", Path("runs") / path.stem)),
+            conditions=unique,
+            criterion=ConvergenceCriterion(**conv),
+        )
+
+    @property
+    def workspace(self) -> Workspace:
+        return Workspace(self.work, self.level)
+
+    def status(self) -> dict[str, list[str]]:
+        """Conditions by state: done, running, failed, left."""
+        states: dict[str, list[str]] = {"done": [], "running": [], "failed": [], "left": []}
+        for c in self.conditions:
+            case = self.workspace.condition_dir(c.name)
+            if read_result(case) is not None:
+                states["done"].append(c.name)
+            elif _running(case):
+                states["running"].append(c.name)
+            elif (case / FAILED_FILE).is_file():
+                states["failed"].append(c.name)
+            else:
+                states["left"].append(c.name)
+        return states
+
+
+def _running(case: Path) -> bool:
+    pid_file = case / RUNNING_FILE
+    if not pid_file.is_file():
+        return False
+    try:
+        os.kill(int(pid_file.read_text().strip()), 0)
+        return True
+    except (ValueError, ProcessLookupError, PermissionError):
+        return False
+
+
+def _coordinates(c: Condition) -> np.ndarray:
+    """Where a condition sits in the sweep space; degrees and rates scaled to comparable flow changes."""
+    return np.array([np.sin(np.radians(c.drift_deg)), np.sin(np.radians(c.pitch_deg)), c.yaw_rate_prime, c.pitch_rate_prime])
+
+
+def run_order(conditions: tuple[Condition, ...]) -> list[Condition]:
+    """Straight-ahead first, then outward by distance from it, so each has a near finished neighbour."""
+    return sorted(conditions, key=lambda c: (float(np.linalg.norm(_coordinates(c))), c.name))
+
+
+def nearest_finished(condition: Condition, finished: dict[str, Condition], ws: Workspace) -> Path | None:
+    """The solution of the finished condition closest to ``condition``: its warm start."""
+    if not finished:
+        return None
+    here = _coordinates(condition)
+    name = min(finished, key=lambda n: (float(np.linalg.norm(_coordinates(finished[n]) - here)), n))
+    return latest_time_dir(ws.condition_dir(name))
+
+
+def run_study(
+    study: Study,
+    log: Callable[[str], None] = print,
+    on_progress: Callable[[Condition, Progress], None] | None = None,
+    warm_start: bool = True,
+) -> dict[str, dict]:
+    """Mesh once, then run every condition on that mesh; finished ones are read back, never recomputed.
+
+    A failing condition is recorded in its ``failed.json`` and the study goes on with the others.
+    """
+    ws = study.workspace
+    body = ws.body(study.body, study.body_dir)
+    ws.mesh(body, log=log)
+    settings = CaseSettings(length=body.reference.length, components=body.component_names, n_procs=study.n_procs,
+                            max_iterations=study.criterion.max_iterations)
+    finished: dict[str, Condition] = {}
+    results: dict[str, dict] = {}
+    order = run_order(study.conditions)
+    for number, condition in enumerate(order, start=1):
+        case = ws.condition_dir(condition.name)
+        done = read_result(case)
+        if done is None:
+            start = nearest_finished(condition, finished, ws) if warm_start else None
+            log(f"[{number}/{len(order)}] {condition.name}" + (f" (warm start from {start.parent.name})" if start else " (cold start)"))
+            case.mkdir(parents=True, exist_ok=True)
+            (case / FAILED_FILE).unlink(missing_ok=True)
+            atomic_write_text(case / RUNNING_FILE, str(os.getpid()))
+            try:
+                done = run_condition(case, ws.mesh_dir, condition, settings, study.criterion, warm_start=start,
+                                     on_progress=(lambda p, c=condition: on_progress(c, p)) if on_progress else None)
+            except HydroderivError as error:
+                atomic_write_text(case / FAILED_FILE, json.dumps({"error": str(error), "trace": traceback.format_exc()}, indent=2))
+                log(f"    failed: {error}")
+                continue
+            finally:
+                (case / RUNNING_FILE).unlink(missing_ok=True)
+            log(f"    {'converged' if done['converged'] else 'NOT converged'} in {done['iterations']} iterations, {done['wall_seconds']:.0f} s")
+        else:
+            log(f"[{number}/{len(order)}] {condition.name}: done")
+        finished[condition.name] = condition
+        results[condition.name] = done
+    return results

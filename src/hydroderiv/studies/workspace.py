@@ -1,0 +1,49 @@
+"""A study's working directory: the body, its single mesh, and one case per condition.
+
+    <work>/geometry/            body.stl + body.json
+    <work>/mesh-<level>/        the mesh case (built once, reused by every condition)
+    <work>/conditions/<name>/   one case per condition, result.json when finished
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Callable
+
+from ..geometry import Body, suboff_body
+from ..geometry.body import REFERENCE_FILE
+from ..geometry.suboff import CONFIGURATIONS
+from ..mesh import build_mesh
+
+
+@dataclass(frozen=True)
+class Workspace:
+    root: Path
+    level: str
+
+    @property
+    def geometry_dir(self) -> Path:
+        return self.root / "geometry"
+
+    @property
+    def mesh_dir(self) -> Path:
+        return self.root / f"mesh-{self.level}"
+
+    def condition_dir(self, name: str) -> Path:
+        return self.root / "conditions" / name
+
+    def body(self, config: str | None = None, body_dir: str | Path | None = None) -> Body:
+        """The study's body: a SUBOFF configuration, or a body directory written by `hydroderiv geometry`."""
+        if (self.geometry_dir / REFERENCE_FILE).is_file():
+            return Body.read(self.geometry_dir)
+        body = Body.read(body_dir) if body_dir else suboff_body(config or "AFF-8")
+        body.write(self.geometry_dir)
+        return body
+
+    def mesh(self, body: Body, log: Callable[[str], None] = print) -> dict:
+        return build_mesh(body, self.level, self.mesh_dir, log=log)
+
+
+def is_suboff(name: str) -> bool:
+    return name.upper() in CONFIGURATIONS

@@ -1,0 +1,40 @@
+"""The derivative estimator recovers known slopes and says how sure it is."""
+
+import numpy as np
+import pytest
+
+from hydroderiv.derivatives import DerivativeFit
+from hydroderiv.errors import ConfigurationError
+
+
+def test_recovers_slope_and_gertler_hagen_nonlinear_term_exactly():
+    v = -np.sin(np.radians([-12, -8, -4, 0, 4, 8, 12]))
+    y = -0.0278 * v + 0.05 * v * np.abs(v)
+    fit = DerivativeFit(nonlinear="abs").fit(v, y)
+    assert fit is not None and fit.slope_ == pytest.approx(-0.0278, rel=1e-10)
+    assert fit.nonlinear_ == pytest.approx(0.05, rel=1e-9)
+    assert fit.slope_stderr_ < 1e-12 and fit.n_points_ == 7
+    np.testing.assert_allclose(fit.predict(v), y, atol=1e-15)
+
+
+def test_standard_error_reflects_scatter():
+    rng = np.random.default_rng(1)
+    v = np.linspace(-0.2, 0.2, 9)
+    clean = -0.0139 * v + 0.01 * v**3
+    noisy = clean + rng.normal(0, 2e-5, v.size)
+    fit = DerivativeFit(nonlinear="cubic").fit(v, noisy)
+    assert fit.slope_stderr_ > 0
+    assert abs(fit.slope_ + 0.0139) < 4 * fit.slope_stderr_ + 1e-6
+
+
+def test_offset_absorbs_a_constant_asymmetry():
+    w = np.linspace(-0.2, 0.2, 7)
+    fit = DerivativeFit(nonlinear="abs", fit_offset=True).fit(w, 3e-4 - 0.0139 * w)
+    assert fit.offset_ == pytest.approx(3e-4) and fit.slope_ == pytest.approx(-0.0139)
+
+
+def test_too_few_points_are_refused():
+    with pytest.raises(ConfigurationError, match="cannot determine"):
+        DerivativeFit(nonlinear="abs").fit([0.1], [0.001])
+    with pytest.raises(ConfigurationError, match="unknown nonlinear"):
+        DerivativeFit(nonlinear="quartic").fit([0.1, 0.2], [0.001, 0.002])

@@ -1,0 +1,49 @@
+"""The derivative table: sweeps picked out of a study's results, fitted, compared with Roddy (1990)."""
+
+import json
+
+import numpy as np
+import pytest
+
+from hydroderiv.case import Condition
+from hydroderiv.derivatives.table import derivative_table, write_table
+
+
+def record(condition, **coefficients):
+    base = dict.fromkeys("XYZKMN", 0.0)
+    base.update(coefficients)
+    return {"condition": condition.__dict__, "coefficients": base}
+
+
+def synthetic_results(yv=-0.0278, nv=-0.0135, yr=0.00325, nr=-0.00372):
+    out = []
+    for beta in (-8, -4, 0, 4, 8):
+        c = Condition(3.344, drift_deg=beta)
+        u, v, _ = c.body_velocity() / c.speed
+        out.append(record(c, Y=yv * u * v + 0.02 * v * abs(v), N=nv * u * v))
+    for r in (-0.2, -0.1, 0.1, 0.2):
+        out.append(record(Condition(3.344, yaw_rate_prime=r), Y=yr * r, N=nr * r + 0.001 * r * abs(r)))
+    out.append(record(Condition(3.344, drift_deg=4, yaw_rate_prime=0.1), Y=1.0, N=1.0))  # combined: not in a sweep
+    return out
+
+
+def test_fits_each_sweep_and_compares_with_the_experiment(tmp_path):
+    rows = {r.name: r for r in derivative_table(synthetic_results(), reference_key="AFF-8")}
+    assert set(rows) == {"Yv", "Nv", "Yr", "Nr"}  # no pitch sweeps were run
+    assert rows["Yr"].value == pytest.approx(0.00325, rel=1e-6)
+    assert rows["Nr"].value == pytest.approx(-0.00372, rel=1e-6)
+    # Y'v: the data carry u'v' = cos(b) v', so the slope in v' differs from -0.0278 only at O(v'^2)
+    assert rows["Yv"].value == pytest.approx(-0.0278, rel=0.02)
+    assert rows["Yv"].reference == -0.027839 and rows["Yv"].error_pct == pytest.approx(
+        100 * (rows["Yv"].value + 0.027839) / 0.027839)
+    # the single-point definition Y'/(u'v') is exact for a purely linear force
+    assert rows["Nv"].single_point == pytest.approx(-0.0135, rel=1e-9)
+    assert rows["Nv"].experimental_uncertainty_pct == 5 and rows["Nr"].experimental_uncertainty_pct == 10
+    json_path, csv_path = write_table(list(rows.values()), tmp_path / "d.json", {"level": "x"})
+    data = json.loads(json_path.read_text())
+    assert data["Yr"] == rows["Yr"].value and "Yr" in csv_path.read_text()
+
+
+def test_mirror_symmetric_data_give_no_offset():
+    rows = {r.name: r for r in derivative_table(synthetic_results())}
+    assert np.isfinite(rows["Yv"].stderr)

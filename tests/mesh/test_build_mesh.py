@@ -1,0 +1,57 @@
+"""The single mesh, built by real OpenFOAM utilities on the coarse level."""
+
+import json
+
+import pytest
+
+from hydroderiv.mesh import MeshDesign
+from hydroderiv.mesh.design import REFINEMENT_RATIO, first_cell_yplus
+
+pytestmark = pytest.mark.openfoam
+
+
+def test_levels_share_one_refinement_ratio():
+    sizes = [MeshDesign(level, 4.261, 0.254, -2.343, 2.013).base_cell for level in ("coarse", "medium", "fine")]
+    assert sizes[0] / sizes[1] == pytest.approx(REFINEMENT_RATIO, rel=0.03)
+    assert sizes[1] / sizes[2] == pytest.approx(REFINEMENT_RATIO, rel=0.03)
+
+
+def test_layers_are_sized_for_wall_functions_at_the_design_speed():
+    d = MeshDesign("medium", 4.261, 0.254, -2.343, 2.013)
+    layers = d.layers()
+    assert first_cell_yplus(layers.first_thickness, 3.344, 4.261, d.nu) == pytest.approx(50.0, rel=1e-9)
+    assert 30 <= first_cell_yplus(layers.first_thickness, 5.93 * 0.5144, 4.261, d.nu) <= 100
+
+
+def test_coarse_mesh_passes_the_quality_gate(coarse_bare_hull):
+    case, report = coarse_bare_hull
+    assert report["checkMesh"]["ok"]
+    assert 150_000 <= report["cells"] <= 300_000
+    assert json.loads((case / "mesh.json").read_text())["cells"] == report["cells"]
+    boundary = (case / "constant/polyMesh/boundary").read_text()
+    assert "farfield" in boundary and "hull" in boundary
+
+
+def test_rotating_zone_is_a_snapped_sphere_not_a_staircase(coarse_bare_hull):
+    case, report = coarse_bare_hull
+    sphere = report["rotating_sphere"]
+    assert sphere["faces"] > 5000
+    # every interface face centre lies on the sphere to within 0.5 % of its radius (a staircase of
+    # 0.25 m cubes on an 8.5 m sphere would deviate by up to ~3 %)
+    assert sphere["max_deviation_pct_of_radius"] < 0.5
+    assert "rotatingZone" in (case / "constant/polyMesh/cellZones").read_text()
+
+
+def test_prism_layers_cover_most_of_the_hull(coarse_bare_hull):
+    _, report = coarse_bare_hull
+    cover = report["layer_coverage"]["hull"]
+    assert cover["any_layer_pct"] > 80
+
+
+def test_a_second_call_reuses_the_mesh(coarse_bare_hull, suboff):
+    from hydroderiv.mesh import build_mesh
+
+    case, report = coarse_bare_hull
+    messages = []
+    again = build_mesh(suboff("AFF-1"), "coarse", case, log=messages.append)
+    assert again == report and "reusing" in messages[0]

@@ -1,0 +1,53 @@
+"""A real straight-ahead simpleFoam run on the coarse mesh: converge on forces, parse, check physics."""
+
+import json
+
+import pytest
+
+from hydroderiv.case import Condition
+from hydroderiv.case.setup import CaseSettings
+from hydroderiv.run.condition import RESULT_FILE, run_condition
+from hydroderiv.run.monitor import ConvergenceCriterion
+
+pytestmark = pytest.mark.openfoam
+
+
+@pytest.fixture(scope="module")
+def straight(coarse_bare_hull, tmp_path_factory):
+    mesh_case, _ = coarse_bare_hull
+    case = tmp_path_factory.mktemp("run") / "straight"
+    settings = CaseSettings(length=4.261, components=("hull",), n_procs=2, max_iterations=600)
+    progress = []
+    record = run_condition(case, mesh_case, Condition(speed=3.344), settings, ConvergenceCriterion(min_iterations=120),
+                           on_progress=progress.append)
+    return case, record, progress, settings
+
+
+def test_drag_has_the_right_sign_and_size(straight):
+    _, record, _, _ = straight
+    drag = -record["force_N"][0]
+    # bare hull at 6.5 kn: ITTC-57 friction alone gives ~95 N on 5.99 m^2, the towing tank ~87 N
+    assert 70.0 < drag < 130.0
+    assert record["converged"]
+
+
+def test_no_side_or_vertical_force_at_zero_incidence(straight):
+    _, record, _, _ = straight
+    drag = -record["force_N"][0]
+    assert abs(record["force_N"][1]) < 0.01 * drag
+    assert abs(record["force_N"][2]) < 0.01 * drag
+
+
+def test_forces_stopped_the_run_not_an_iteration_count(straight):
+    case, record, progress, settings = straight
+    assert 120 <= record["iterations"] < settings.max_iterations
+    assert progress and progress[-1].iteration >= 100 and "p" in progress[-1].residuals
+    assert record["yplus"]["hull"]["mean"] > 20
+
+
+def test_a_finished_condition_is_not_recomputed(straight, coarse_bare_hull):
+    case, record, _, settings = straight
+    before = (case / RESULT_FILE).stat().st_mtime_ns
+    again = run_condition(case, coarse_bare_hull[0], Condition(speed=3.344), settings)
+    assert again == json.loads((case / RESULT_FILE).read_text()) == record
+    assert (case / RESULT_FILE).stat().st_mtime_ns == before

@@ -1,0 +1,63 @@
+"""Study files: what they describe, and clear errors for what they get wrong."""
+
+import pytest
+
+from hydroderiv.case import KNOT, Condition
+from hydroderiv.errors import ConfigurationError
+from hydroderiv.studies.study import Study, run_order
+
+GOOD = """
+[study]
+body = "aff-8"
+level = "coarse"
+speed_knots = 6.5
+work = "WORK"
+
+[sweeps]
+drift_deg = [-4, 4, 8]
+yaw_rate_prime = [0.1, -0.1]
+
+[[conditions]]
+drift_deg = 4
+yaw_rate_prime = 0.1
+
+[convergence]
+rel_tol = 0.01
+"""
+
+
+def write(tmp_path, text):
+    path = tmp_path / "s.toml"
+    path.write_text(text.replace("WORK", str(tmp_path / "work")))
+    return path
+
+
+def test_a_study_lists_straight_ahead_sweeps_and_extras(tmp_path):
+    study = Study.load(write(tmp_path, GOOD))
+    assert study.body == "AFF-8" and study.speed == pytest.approx(6.5 * KNOT)
+    assert len(study.conditions) == 1 + 3 + 2 + 1
+    assert study.criterion.rel_tol == 0.01
+    assert all(s["left"] for s in [study.status()]) and len(study.status()["left"]) == 7
+
+
+def test_run_order_starts_straight_and_moves_outward():
+    cs = (Condition(3, drift_deg=8), Condition(3), Condition(3, drift_deg=-4), Condition(3, yaw_rate_prime=0.3))
+    order = run_order(cs)
+    assert order[0] == Condition(3) and order[1] == Condition(3, drift_deg=-4)
+
+
+@pytest.mark.parametrize(
+    "text, words",
+    [
+        (GOOD.replace('body = "aff-8"', 'body = "AFF-7"'), "unknown configuration"),
+        (GOOD.replace("speed_knots = 6.5", ""), "speed"),
+        (GOOD.replace("drift_deg = [-4, 4, 8]", "roll_deg = [4]"), "unknown sweep 'roll_deg'"),
+        (GOOD.replace("drift_deg = [-4, 4, 8]", "drift_deg = [45]"), "drift angle 45"),
+        (GOOD.replace("yaw_rate_prime = [0.1, -0.1]", "yaw_rate_prime = [3.0]"), "impossible"),
+        (GOOD.replace("rel_tol", "tolerance"), "unknown convergence keys"),
+        ("[study\nbody=", "not valid TOML"),
+    ],
+)
+def test_mistakes_are_named(tmp_path, text, words):
+    with pytest.raises(ConfigurationError, match=words):
+        Study.load(write(tmp_path, text))
