@@ -55,3 +55,20 @@ def test_a_second_call_reuses_the_mesh(coarse_bare_hull, suboff):
     messages = []
     again = build_mesh(suboff("AFF-1"), "coarse", case, log=messages.append)
     assert again == report and "reusing" in messages[0]
+
+
+def test_the_background_grid_keeps_planes_off_the_hull_axis(coarse_bare_hull):
+    """Grid planes through the axis made the nose tip a vertex of four layered cells (a blow-up there)."""
+    from foamlib import FoamFile
+
+    from hydroderiv.mesh.snappy import GRID_SHIFT
+
+    case, report = coarse_bare_hull
+    vertices = FoamFile(case / "system/blockMeshDict")["vertices"]
+    low = min(v[1] for v in vertices)
+    h0 = report["base_cell_m"]
+    for level in range(8):
+        cell = h0 / 2**level
+        offset = ((0.0 - low) / cell) % 1.0
+        assert min(offset, 1 - offset) > 0.3  # y = 0 is never within 30 % of a cell of a grid plane
+    assert GRID_SHIFT[1] * h0 == pytest.approx(low + report["design"]["domain_half_width_L"] * 4.261, abs=1e-6)

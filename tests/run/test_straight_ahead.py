@@ -51,3 +51,21 @@ def test_a_finished_condition_is_not_recomputed(straight, coarse_bare_hull):
     again = run_condition(case, coarse_bare_hull[0], Condition(speed=3.344), settings)
     assert again == json.loads((case / RESULT_FILE).read_text()) == record
     assert (case / RESULT_FILE).stat().st_mtime_ns == before
+
+
+def test_a_diverging_run_is_stopped_and_named(coarse_bare_hull, tmp_path):
+    """Sabotaged numerics (no under-relaxation, central convection) must end in a clear divergence error."""
+    from foamlib import FoamFile
+
+    from hydroderiv.case.setup import write_condition_case
+    from hydroderiv.forces import PrimeScales
+    from hydroderiv.run.solver import SolverDivergedError, run_steady
+
+    settings = CaseSettings(length=4.261, components=("hull",), n_procs=1, max_iterations=400)
+    case = write_condition_case(tmp_path / "bad", coarse_bare_hull[0], Condition(speed=3.344), settings)
+    with FoamFile(case / "system/fvSolution") as f:
+        f["relaxationFactors"] = {"fields": {"p": 1.0}, "equations": {"U": 1.0, "k": 1.0, "omega": 1.0}}
+    with FoamFile(case / "system/fvSchemes") as f:
+        f["divSchemes"]["div(phi,U)"] = ("Gauss", "linear")
+    with pytest.raises(SolverDivergedError, match=r"diverged .*(residual|force|floating)"):
+        run_steady(case, PrimeScales(998.55, 3.344, 4.261), ("hull",), ConvergenceCriterion(), n_procs=1)

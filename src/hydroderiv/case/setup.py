@@ -43,7 +43,16 @@ def _vector(v) -> list[float]:
     return [float(f"{x:.10g}") for x in np.asarray(v, dtype=float)]
 
 
+def write_schedule(max_iterations: int, wanted_interval: int) -> tuple[int, int]:
+    """(endTime, writeInterval) with endTime a multiple of the interval: OpenFOAM writes nothing at an
+    endTime that is not a write time, and the last iterations of a capped run would be lost."""
+    writes = max(1, -(-max_iterations // wanted_interval))
+    interval = -(-max_iterations // writes)
+    return interval * writes, interval
+
+
 def _write_control(case: Path, s: CaseSettings) -> None:
+    end, interval = write_schedule(s.max_iterations, s.write_interval)
     functions = {}
     force_common = {
         "type": "forces",
@@ -55,10 +64,12 @@ def _write_control(case: Path, s: CaseSettings) -> None:
         "CofR": [0.0, 0.0, 0.0],  # moments about the moment centre B, the origin of the body axes
         "log": False,
     }
-    functions[TOTAL_FORCES] = {**force_common, "patches": list(s.components)}
+    if s.components:  # an empty domain (frame verification) has no body to integrate over
+        functions[TOTAL_FORCES] = {**force_common, "patches": list(s.components)}
     for component in s.components:
         functions[component_function_name(component)] = {**force_common, "patches": [component]}
-    functions["yPlus"] = {"type": "yPlus", "libs": [quoted("libfieldFunctionObjects.so")], "writeControl": "writeTime"}
+    if s.components:
+        functions["yPlus"] = {"type": "yPlus", "libs": [quoted("libfieldFunctionObjects.so")], "writeControl": "writeTime"}
     # Creating the file STOP in the case makes the solver write and exit: the convergence monitor's brake.
     functions["stop"] = {
         "type": "abort",
@@ -73,10 +84,10 @@ def _write_control(case: Path, s: CaseSettings) -> None:
             "startFrom": "latestTime",
             "startTime": 0,
             "stopAt": "endTime",
-            "endTime": s.max_iterations,
+            "endTime": end,
             "deltaT": 1,
             "writeControl": "timeStep",
-            "writeInterval": min(s.write_interval, s.max_iterations),
+            "writeInterval": interval,
             "purgeWrite": 1,
             "writeFormat": "binary",
             "writePrecision": 10,
