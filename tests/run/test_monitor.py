@@ -39,12 +39,23 @@ def test_nan_and_exploding_residuals_are_divergence():
 def test_convergence_needs_a_flat_window_after_the_minimum_iterations():
     c = ConvergenceCriterion(window=50, rel_tol=0.005, abs_tol=1e-6, min_iterations=100)
     it = np.arange(1, 301)
-    decaying = np.column_stack([1e-3 * (1 + np.exp(-it / 20.0)), 1e-8 * np.sin(it)])  # drag settles, side force ~0
+    decaying = np.zeros((len(it), 6))
+    decaying[:, 0] = 1e-3 * (1 + np.exp(-it / 20.0))  # drag settles
+    decaying[:, 1] = 1e-8 * np.sin(it)  # side force ~0 within the absolute tolerance
     assert not c.is_met(it[:80], decaying[:80])  # before min_iterations
     assert c.is_met(it, decaying)
     oscillating = decaying.copy()
     oscillating[:, 0] *= 1 + 0.02 * np.sin(it / 3.0)
     assert not c.is_met(it, oscillating)
+
+
+def test_only_the_monitored_coefficients_must_settle():
+    it = np.arange(1, 301)
+    forces = np.zeros((len(it), 6))
+    forces[:, 0] = -1.25e-3
+    forces[:, 1] = 3e-4 * (1 + 0.1 * np.sin(it / 7.0))  # a side force still wandering
+    assert not ConvergenceCriterion().is_met(it, forces)
+    assert ConvergenceCriterion(monitored=("X",)).is_met(it, forces)
 
 
 def test_force_blow_up_is_divergence():

@@ -290,7 +290,6 @@ def build_mesh(
     lo, hi = body.surface.bounds
     radius = float(max(abs(lo[1]), abs(hi[1]), abs(lo[2]), abs(hi[2])))
     design = MeshDesign(level, body.reference.length, radius, float(lo[0]), float(hi[0]), design_speed=design_speed)
-    timings = {}
     snapped = case / "log.snappyHexMesh"
     if snapped.is_file() and snapped.read_text().rstrip().endswith("End"):
         # snappyHexMesh finished before an interruption (or a failed gate): check it again, don't re-mesh
@@ -307,11 +306,15 @@ def build_mesh(
             ("snappyHexMesh", ["snappyHexMesh", "-overwrite"]),
             ("checkMesh", ["checkMesh", "-constant"]),
         ]
+    # Step timings are kept on disk, so a mesh checked again after an interruption still reports its cost.
+    timings_path = case / "timings.json"
+    timings = json.loads(timings_path.read_text()) if timings_path.is_file() else {}
     for name, command in steps:
         log(f"  {name} ...")
         t0 = time.monotonic()
         run_application(case, command, log_name=name)
         timings[name] = round(time.monotonic() - t0, 1)
+        atomic_write_text(timings_path, json.dumps(timings))
     check = parse_check_mesh((case / "log.checkMesh").read_text())
     if not check["ok"]:
         raise MeshQualityError(

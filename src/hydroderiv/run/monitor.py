@@ -8,6 +8,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+COEFFICIENTS = ("X", "Y", "Z", "K", "M", "N")
 _TIME = re.compile(r"^Time = (\S+)", re.M)
 _RESIDUAL = re.compile(r"Solving for (\w+), Initial residual = ([^,]+),")
 
@@ -68,10 +69,12 @@ class ConvergenceCriterion:
     abs_tol: float = 2e-6
     min_iterations: int = 100
     max_iterations: int = 3000
+    monitored: tuple[str, ...] = ("X", "Y", "Z", "K", "M", "N")  # which of (X', Y', Z', K', M', N') must settle
 
     def spread(self, coefficients: np.ndarray) -> np.ndarray:
-        """Per-component (max - min) over the window, relative to the tolerance it must meet (<= 1 passes)."""
-        recent = coefficients[-self.window :]
+        """Per monitored coefficient: (max - min) over the window over the tolerance it must meet (<= 1 passes)."""
+        columns = [COEFFICIENTS.index(name) for name in self.monitored]
+        recent = coefficients[-self.window :, columns]
         allowed = np.maximum(self.rel_tol * np.abs(recent[-1]), self.abs_tol)
         return np.ptp(recent, axis=0) / allowed
 

@@ -89,7 +89,8 @@ def run_steady(
     stop_requested = False
     diverged: str | None = None
     iterations, coefficients = np.empty(0), np.empty((0, 6))
-    with open(log_path, "w") as log_out, open(log_path) as log_in:
+    # Appending keeps the log of an interrupted run that this call resumes.
+    with open(log_path, "a") as log_out, open(log_path) as log_in:
         process = subprocess.Popen(command, cwd=case, env=foam_environment(case), stdout=log_out, stderr=subprocess.STDOUT)
         try:
             while True:
@@ -128,8 +129,9 @@ def run_steady(
     converged = criterion.is_met(iterations, coefficients)
     per_component = {}
     for name in components:
-        _, history = coefficient_history(case, scales, component_function_name(name))
-        per_component[name] = history[-criterion.window :].mean(axis=0)
+        sampled, history = coefficient_history(case, scales, component_function_name(name))
+        recent = sampled > sampled[-1] - criterion.window if len(sampled) else slice(None)
+        per_component[name] = history[recent].mean(axis=0)
     return RunResult(
         iterations=int(iterations[-1]),
         converged=converged,

@@ -32,7 +32,7 @@ def run_resistance(
     config: str = "AFF-8",
     body_dir: str | Path | None = None,
     n_procs: int = 2,
-    criterion: ConvergenceCriterion = ConvergenceCriterion(),
+    criterion: ConvergenceCriterion = ConvergenceCriterion(monitored=("X",)),
     results_path: str | Path | None = None,
     log: Callable[[str], None] = print,
     on_progress: Callable[[float, Progress], None] | None = None,
