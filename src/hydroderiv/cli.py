@@ -184,19 +184,20 @@ def build_parser() -> argparse.ArgumentParser:
     geo.add_argument("--out", required=True, help="output directory")
     geo.set_defaults(func=_geometry)
 
+    def add_body_and_level(step: argparse.ArgumentParser) -> None:
+        step.add_argument("--config", default="AFF-8", help="SUBOFF configuration (ignored with --body)")
+        step.add_argument("--body", help="a body directory written by `hydroderiv geometry` instead of SUBOFF")
+        step.add_argument("--level", default="coarse", choices=LEVELS)
+
     mesh = steps.add_parser("mesh", help="build the single mesh of a body (every condition runs on it)")
-    mesh.add_argument("--config", default="AFF-8", help="SUBOFF configuration (ignored with --body)")
-    mesh.add_argument("--body", help="a body directory written by `hydroderiv geometry`")
-    mesh.add_argument("--level", default="coarse", choices=LEVELS)
+    add_body_and_level(mesh)
     mesh.add_argument("--design-speed", type=float, default=3.344, help="speed the prism layers are sized for, m/s")
     mesh.add_argument("--out", required=True, help="mesh case directory")
     mesh.set_defaults(func=_mesh)
 
     res = steps.add_parser("resistance", help="straight-ahead resistance against speed on one mesh, with the experiment")
-    res.add_argument("--config", default="AFF-8", help="SUBOFF configuration (its measured speeds are the default)")
-    res.add_argument("--body", help="a body directory written by `hydroderiv geometry` instead of SUBOFF")
-    res.add_argument("--level", default="coarse", choices=LEVELS)
-    res.add_argument("--speeds", type=float, nargs="+", help="speeds in knots")
+    add_body_and_level(res)
+    res.add_argument("--speeds", type=float, nargs="+", help="speeds in knots (default: the measured speeds of --config)")
     res.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
     res.add_argument("--max-iterations", type=int, default=3000)
     res.add_argument("--work", required=True, help="working directory (geometry, mesh, cases); resumable")

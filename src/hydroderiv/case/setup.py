@@ -149,6 +149,17 @@ def _write_physics(case: Path, condition: Condition, s: CaseSettings) -> None:
     )
 
 
+def _transported_turbulence(dimensions: str, value: float, wall_function: str) -> dict:
+    """k or omega: the free-stream value where the far field flows in, a wall function on the body."""
+    return {
+        "class": "volScalarField",
+        "dimensions": dimensions,
+        "internal": value,
+        "farfield": {"type": "inletOutlet", "inletValue": value, "value": value},
+        "wall": {"type": wall_function, "value": value},
+    }
+
+
 def _fields(condition: Condition, s: CaseSettings) -> dict[str, dict]:
     # Field files: foamlib writes a plain value of a field entry as 'uniform <value>'.
     inflow = _vector(condition.inflow())
@@ -169,20 +180,8 @@ def _fields(condition: Condition, s: CaseSettings) -> dict[str, dict]:
             "farfield": {"type": "freestreamPressure", "freestreamValue": 0.0, "value": 0.0},
             "wall": {"type": "zeroGradient"},
         },
-        "k": {
-            "class": "volScalarField",
-            "dimensions": "[0 2 -2 0 0 0 0]",
-            "internal": k,
-            "farfield": {"type": "inletOutlet", "inletValue": k, "value": k},
-            "wall": {"type": "kqRWallFunction", "value": k},
-        },
-        "omega": {
-            "class": "volScalarField",
-            "dimensions": "[0 0 -1 0 0 0 0]",
-            "internal": omega,
-            "farfield": {"type": "inletOutlet", "inletValue": omega, "value": omega},
-            "wall": {"type": "omegaWallFunction", "value": omega},
-        },
+        "k": _transported_turbulence("[0 2 -2 0 0 0 0]", k, "kqRWallFunction"),
+        "omega": _transported_turbulence("[0 0 -1 0 0 0 0]", omega, "omegaWallFunction"),
         "nut": {
             "class": "volScalarField",
             "dimensions": "[0 2 -1 0 0 0 0]",

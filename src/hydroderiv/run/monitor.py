@@ -33,10 +33,14 @@ class LogWatcher:
                     self.iteration = int(float(times[-1]))
                 except ValueError:
                     pass
-                self.residuals = {}
+            found: dict[str, float] = {}
             for name, value in _RESIDUAL.findall(block):
                 # the first solve of a field in an iteration carries its initial residual
-                self.residuals.setdefault(name, _to_float(value))
+                found.setdefault(name, _to_float(value))
+            if times and found:  # a block cut before its first solve keeps the previous residuals on show
+                self.residuals = found
+            elif found:  # the rest of an iteration whose start came with the previous feed
+                self.residuals = {**found, **self.residuals}
 
     def divergence(self, limit: float = 1e3) -> str | None:
         """A reason to call the run diverged, or None."""
