@@ -11,8 +11,8 @@ from .._io import atomic_write_bytes
 
 def resistance_table(points: list[dict], title: str) -> Table:
     table = Table(title=title)
-    for column in ("speed (kn)", "CFD (N)", "pressure (N)", "viscous (N)", "experiment (N)", "error (%)",
-                   "iterations", "converged", "wall (s)", "y+ mean (hull)"):
+    # short headers: the table must stay readable in an 80-column terminal
+    for column in ("kn", "CFD N", "press. N", "visc. N", "exp. N", "err %", "iter", "conv", "wall s", "y+ hull"):
         table.add_column(column, justify="right")
     for p in points:
         yplus = p.get("yplus", {}).get("hull", {}).get("mean")
