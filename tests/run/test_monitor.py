@@ -62,3 +62,11 @@ def test_force_blow_up_is_divergence():
     assert force_divergence(np.array([[1e-3, 0.0]])) is None
     assert "NaN" in force_divergence(np.array([[np.nan, 0.0]]))
     assert "blew up" in force_divergence(np.array([[50.0, 0.0]]))
+
+
+def test_the_openfoam_release_is_read_from_a_log_header():
+    from hydroderiv.run.openfoam import openfoam_version_from_log
+
+    assert openfoam_version_from_log("Build  : OPENFOAM=1912 patch=200626\nArch   : ...") == "1912"
+    assert openfoam_version_from_log("| Version:  v2312 |") == "2312"
+    assert openfoam_version_from_log("no header") is None

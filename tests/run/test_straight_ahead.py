@@ -43,6 +43,7 @@ def test_forces_stopped_the_run_not_an_iteration_count(straight):
     assert 120 <= record["iterations"] < settings.max_iterations
     assert progress and progress[-1].iteration >= 100 and "p" in progress[-1].residuals
     assert record["yplus"]["hull"]["mean"] > 20
+    assert record["openfoam_version"]  # provenance: the release that produced the result
 
 
 def test_a_finished_condition_is_not_recomputed(straight, coarse_bare_hull):

@@ -22,7 +22,6 @@ from .conditions import Condition
 from .fluid import Fluid, FreestreamTurbulence
 from .numerics import write_numerics
 
-FIELDS = ("U", "p", "k", "omega", "nut")
 COMPONENT_INTERVAL = 10  # iterations between per-component force samples
 
 

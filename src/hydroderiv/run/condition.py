@@ -20,7 +20,7 @@ from ..case.conditions import Condition
 from ..case.setup import CaseSettings, latest_time_dir, write_condition_case
 from ..forces import COEFFICIENT_NAMES, PrimeScales
 from .monitor import ConvergenceCriterion
-from .openfoam import run_application
+from .openfoam import openfoam_version_from_log, run_application
 from .solver import Progress, run_steady
 
 RESULT_FILE = "result.json"
@@ -99,6 +99,7 @@ def run_condition(
         "window_spread": np.ptp(result.history[-criterion.window :], axis=0).tolist(),
         "yplus": _yplus_summary(case),
         "reference": {"rho": settings.fluid.rho, "speed": condition.speed, "length": settings.length},
+        "openfoam_version": openfoam_version_from_log((case / "log.simpleFoam").read_text(errors="replace")),
     }
     atomic_write_text(case / RESULT_FILE, json.dumps(record, indent=2) + "\n")
     return record
