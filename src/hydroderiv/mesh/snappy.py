@@ -253,19 +253,25 @@ def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> Non
     )
 
 
+def _write_meshing_controls(case: Path) -> None:
+    """controlDict, and fvSchemes/fvSolution, which snappyHexMesh reads too."""
+    from ..case.numerics import write_numerics
+
+    write_foam_dict(case / "system/controlDict", {"application": "snappyHexMesh", "startFrom": "latestTime",
+                                                  "startTime": 0, "stopAt": "endTime", "endTime": 0, "deltaT": 1,
+                                                  "writeControl": "timeStep", "writeInterval": 1})
+    write_numerics(case)
+
+
 def write_mesh_case(case: Path, body: Body, design: MeshDesign) -> None:
     """Write every dictionary meshing needs, and the body surface, into ``case``."""
-    from ..case.numerics import write_numerics  # snappy reads fvSchemes/fvSolution too
 
     case.mkdir(parents=True, exist_ok=True)
     tri = case / "constant/triSurface"
     tri.mkdir(parents=True, exist_ok=True)
     body.write(tri)
     (tri / "body.json").rename(case / "body.json")
-    write_foam_dict(case / "system/controlDict", {"application": "snappyHexMesh", "startFrom": "latestTime",
-                                                  "startTime": 0, "stopAt": "endTime", "endTime": 0, "deltaT": 1,
-                                                  "writeControl": "timeStep", "writeInterval": 1})
-    write_numerics(case)
+    _write_meshing_controls(case)
     _write_block_mesh(case, design)
     _write_snappy(case, design, body.component_names)
 
@@ -353,18 +359,12 @@ def build_empty_domain(case: str | Path, design: MeshDesign, log: Callable[[str]
 
     With no body, uniform flow must stay uniform in every condition of the hybrid frames.
     """
-    from ..case.numerics import write_numerics
-
     case = Path(case)
     if (case / REPORT_FILE).is_file():
         return json.loads((case / REPORT_FILE).read_text())
     if case.exists():
         shutil.rmtree(case)
-    (case / "system").mkdir(parents=True)
-    write_foam_dict(case / "system/controlDict", {"application": "snappyHexMesh", "startFrom": "latestTime",
-                                                  "startTime": 0, "stopAt": "endTime", "endTime": 0, "deltaT": 1,
-                                                  "writeControl": "timeStep", "writeInterval": 1})
-    write_numerics(case)
+    _write_meshing_controls(case)
     _write_block_mesh(case, design)
     _write_snappy(case, design, ())
     for name, command in (("blockMesh", ["blockMesh"]), ("snappyHexMesh", ["snappyHexMesh", "-overwrite"]),
