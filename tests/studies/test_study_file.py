@@ -61,3 +61,17 @@ def test_run_order_starts_straight_and_moves_outward():
 def test_mistakes_are_named(tmp_path, text, words):
     with pytest.raises(ConfigurationError, match=words):
         Study.load(write(tmp_path, text))
+
+
+def test_status_tells_running_from_left(tmp_path):
+    import os
+
+    from hydroderiv.studies.study import running_marker
+
+    study = Study.load(write(tmp_path, GOOD))
+    case = study.workspace.condition_dir(study.conditions[1].name)
+    case.parent.mkdir(parents=True)
+    running_marker(case).write_text(str(os.getpid()))  # a live process
+    assert study.status()["running"] == [study.conditions[1].name]
+    running_marker(case).write_text("999999999")  # a process that is gone
+    assert study.status()["running"] == []

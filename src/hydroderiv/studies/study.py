@@ -46,7 +46,12 @@ from ..run.solver import Progress
 from .workspace import Workspace, is_suboff
 
 FAILED_FILE = "failed.json"
-RUNNING_FILE = "running.pid"
+
+
+def running_marker(case: Path) -> Path:
+    """The pid file of a condition being run. It sits beside the case, not in it: a fresh condition's
+    case directory is cleared when the run starts, which would delete a marker inside it."""
+    return case.parent / f"{case.name}.running"
 
 
 @dataclass(frozen=True)
@@ -130,7 +135,7 @@ class Study:
 
 
 def _running(case: Path) -> bool:
-    pid_file = case / RUNNING_FILE
+    pid_file = running_marker(case)
     if not pid_file.is_file():
         return False
     try:
@@ -185,7 +190,7 @@ def run_study(
             log(f"[{number}/{len(order)}] {condition.name}" + (f" (warm start from {start.parent.name})" if start else " (cold start)"))
             case.mkdir(parents=True, exist_ok=True)
             (case / FAILED_FILE).unlink(missing_ok=True)
-            atomic_write_text(case / RUNNING_FILE, str(os.getpid()))
+            atomic_write_text(running_marker(case), str(os.getpid()))
             try:
                 done = run_condition(case, ws.mesh_dir, condition, settings, study.criterion, warm_start=start,
                                      on_progress=(lambda p, c=condition: on_progress(c, p)) if on_progress else None)
@@ -194,7 +199,7 @@ def run_study(
                 log(f"    failed: {error}")
                 continue
             finally:
-                (case / RUNNING_FILE).unlink(missing_ok=True)
+                running_marker(case).unlink(missing_ok=True)
             log(f"    {'converged' if done['converged'] else 'NOT converged'} in {done['iterations']} iterations, {done['wall_seconds']:.0f} s")
         else:
             log(f"[{number}/{len(order)}] {condition.name}: done")
