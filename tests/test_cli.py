@@ -32,3 +32,22 @@ def test_bad_stl_gives_a_clear_error_not_a_traceback(tmp_path, capsys):
 def test_unknown_configuration_is_named(tmp_path, capsys):
     assert main(["geometry", "--config", "AFF-5", "--out", str(tmp_path)]) == 2
     assert "unknown SUBOFF configuration 'AFF-5'" in capsys.readouterr().out
+
+
+def test_progress_shows_each_condition_from_its_own_first_iteration(capsys):
+    """A study's second condition counts iterations from 0 again; its progress must not wait for the first's count."""
+    import numpy as np
+
+    from hydroderiv.cli import _progress_printer
+    from hydroderiv.run.solver import Progress
+
+    show = _progress_printer(lambda key: key, every=25)
+
+    def progress(iteration):
+        return Progress(iteration, {"p": 1e-3}, np.zeros(6), None, 1.0)
+
+    for iteration in (0, 10, 25, 200):
+        show("first", progress(iteration))
+    show("second", progress(30))
+    lines = [line for line in capsys.readouterr().out.splitlines() if " it " in line]
+    assert [line.split()[0] for line in lines] == ["first", "first", "first", "second"]

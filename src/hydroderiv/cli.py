@@ -52,12 +52,12 @@ def _geometry(args: argparse.Namespace) -> int:
 
 def _progress_printer(label: Callable[[object], str], every: int = 25):
     """A progress callback printing iteration, residuals, forces and their convergence every few iterations."""
-    last = {"iteration": -1}
+    last: dict = {}  # per condition: each run counts its iterations from its own start
 
     def show(key, p) -> None:
-        if p.coefficients is None or p.iteration - last["iteration"] < every:
+        if p.coefficients is None or p.iteration - last.get(key, -every) < every:
             return
-        last["iteration"] = p.iteration
+        last[key] = p.iteration
         residuals = " ".join(f"{k} {v:.1e}" for k, v in p.residuals.items())
         x, y, z, k, m, n = p.coefficients
         spread = "-" if p.spread is None else f"{p.spread.max():.2f}"
@@ -136,12 +136,14 @@ def _study_status(args: argparse.Namespace) -> int:
 
 
 def _derivatives(args: argparse.Namespace) -> int:
-    from .derivatives.table import derivative_table, write_table
+    from .derivatives.table import derivative_table, fit_sweeps, write_table
+    from .experiments import DERIVATIVES
+    from .report.derivatives import plot_fits
     from .run.condition import read_result
     from .studies.study import Study
 
     study = Study.load(args.file)
-    results = [r for c in study.conditions if (r := read_result(study.workspace.condition_dir(c.name)))]
+    results = [r for c in study.conditions if (r := read_result(study.case_dir(c)))]
     rows = derivative_table(results, reference_key=study.body)
     if not rows:
         raise HydroderivError(f"no sweep of {study.path} has enough finished conditions for a derivative yet")
@@ -157,7 +159,9 @@ def _derivatives(args: argparse.Namespace) -> int:
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": study.body or str(study.body_dir),
             "conditions": len(results)}
     paths = write_table(rows, out, meta)
-    console.print(f"written: {paths[0]}, {paths[1]}")
+    reference = DERIVATIVES.get(study.body or "", {}).get("values")
+    plot = plot_fits(fit_sweeps(results), out.with_suffix(".png"), f"{study.body or study.body_dir}, {study.level} mesh", reference)
+    console.print(f"written: {paths[0]}, {paths[1]}, {plot}")
     return 0
 
 

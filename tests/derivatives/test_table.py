@@ -47,3 +47,12 @@ def test_fits_each_sweep_and_compares_with_the_experiment(tmp_path):
 def test_mirror_symmetric_data_give_no_offset():
     rows = {r.name: r for r in derivative_table(synthetic_results())}
     assert np.isfinite(rows["Yv"].stderr)
+
+
+def test_the_fit_plot_is_written(tmp_path):
+    from hydroderiv.derivatives.table import fit_sweeps
+    from hydroderiv.report.derivatives import plot_fits
+
+    fits = fit_sweeps(synthetic_results())
+    path = plot_fits(fits, tmp_path / "fits.png", "synthetic", {"Yv": -0.0278})
+    assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and path.stat().st_size > 10_000

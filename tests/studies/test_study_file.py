@@ -55,6 +55,8 @@ def test_run_order_starts_straight_and_moves_outward():
         (GOOD.replace("drift_deg = [-4, 4, 8]", "drift_deg = [45]"), "drift angle 45"),
         (GOOD.replace("yaw_rate_prime = [0.1, -0.1]", "yaw_rate_prime = [3.0]"), "impossible"),
         (GOOD.replace("rel_tol", "tolerance"), "unknown convergence keys"),
+        (GOOD.replace('level = "coarse"', 'level = "coarse"\nmethod = "rotating"'), "unknown method 'rotating'"),
+        (GOOD.replace('level = "coarse"', 'level = "coarse"\nspeed_kn = 6'), r"unknown \[study\] key\(s\) speed_kn"),
         ("[study\nbody=", "not valid TOML"),
     ],
 )
@@ -75,3 +77,12 @@ def test_status_tells_running_from_left(tmp_path):
     assert study.status()["running"] == [study.conditions[1].name]
     running_marker(case).write_text("999999999")  # a process that is gone
     assert study.status()["running"] == []
+
+
+def test_a_classic_study_shares_the_straight_runs_and_keeps_its_turns_apart(tmp_path):
+    hybrid = Study.load(write(tmp_path, GOOD))
+    classic = Study.load(write(tmp_path, GOOD.replace('level = "coarse"', 'level = "coarse"\nmethod = "classic"')))
+    straight, drift, turn = Condition(hybrid.speed), Condition(hybrid.speed, drift_deg=4), Condition(hybrid.speed, yaw_rate_prime=0.1)
+    assert classic.case_dir(straight) == hybrid.case_dir(straight)
+    assert classic.case_dir(drift) == hybrid.case_dir(drift)
+    assert classic.case_dir(turn) != hybrid.case_dir(turn) and classic.case_dir(turn).parent.name == "conditions-classic"

@@ -3,12 +3,13 @@
 Only the inflow vector, Omega and the momentum source change between conditions; the mesh is linked,
 never rebuilt. Far field: the six cube faces form one patch whose conditions switch each face between
 inflow and outflow with the local flux (freestreamVelocity / freestreamPressure), so any inflow direction
-works on the same mesh.
+works on the same mesh. The frame method (hybrid or classic) is described in :mod:`hydroderiv.case.frames`.
 """
 
 from __future__ import annotations
 
 import os
+import re
 import shutil
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -18,8 +19,10 @@ import numpy as np
 from .._foam import quoted, write_foam_dict
 from ..mesh.snappy import FARFIELD, ROTATING_ZONE, WALL_GROUP
 from ..run.solver import STOP_FILE, TOTAL_FORCES, component_function_name
+from ..errors import ConfigurationError
 from .conditions import Condition
 from .fluid import Fluid, FreestreamTurbulence
+from .frames import FRAME_METHODS, FrameSetup, frame_setup
 from .numerics import write_numerics
 
 COMPONENT_INTERVAL = 10  # iterations between per-component force samples
@@ -37,6 +40,11 @@ class CaseSettings:
     max_iterations: int = 3000
     write_interval: int = 250  # iterations between intermediate writes, for resuming an interrupted run
     second_order: bool = True
+    method: str = "hybrid"  # frame method, see hydroderiv.case.frames
+
+    def __post_init__(self):
+        if self.method not in FRAME_METHODS:
+            raise ConfigurationError(f"unknown frame method {self.method!r}; choose one of {', '.join(FRAME_METHODS)}")
 
 
 def _vector(v) -> list[float]:
@@ -108,41 +116,40 @@ def _write_control(case: Path, s: CaseSettings) -> None:
     )
 
 
-def _write_physics(case: Path, condition: Condition, s: CaseSettings) -> None:
+def _write_physics(case: Path, frame: FrameSetup, s: CaseSettings) -> None:
     write_foam_dict(case / "constant/transportProperties", {"transportModel": "Newtonian", "nu": s.fluid.nu})
     write_foam_dict(
         case / "constant/turbulenceProperties",
         {"simulationType": "RAS", "RAS": {"RASModel": "kOmegaSST", "turbulence": True, "printCoeffs": True}},
     )
-    omega = condition.angular_velocity(s.length)
-    magnitude = float(np.linalg.norm(omega))
-    # The hybrid frames: the sphere rotates about B with Omega; the far field outside it is inertial.
+    magnitude = float(np.linalg.norm(frame.omega))
+    # hybrid: the sphere rotates about B and the far field outside it is inertial; classic: every cell
+    # rotates about the turn centre, and the far field (fluid at rest) must not be given the frame velocity.
     write_foam_dict(
         case / "constant/MRFProperties",
         {
             "rotatingFrame": {
                 "cellZone": ROTATING_ZONE,
-                "active": magnitude > 0,
-                "nonRotatingPatches": [],  # the body rotates with the frame
-                "origin": [0.0, 0.0, 0.0],
-                "axis": _vector(omega / magnitude) if magnitude > 0 else [0.0, 0.0, 1.0],
+                "active": frame.rotating,
+                "nonRotatingPatches": [FARFIELD] if frame.whole_domain_rotates else [],  # the body rotates with the frame
+                "origin": _vector(frame.origin),
+                "axis": _vector(frame.omega / magnitude) if magnitude > 0 else [0.0, 0.0, 1.0],
                 "omega": magnitude,
             }
         },
     )
-    source = condition.momentum_source(s.length)
-    # Delta/rho = Omega x U_inf on the same zone: cancels the Coriolis term of the free stream in
+    # hybrid: Delta/rho = Omega x U_inf on the same zone cancels the Coriolis term of the free stream in
     # OpenFOAM's absolute-velocity MRF, so uniform flow solves both zones exactly. Kinematic: m/s^2.
     write_foam_dict(
         case / "constant/fvOptions",
         {
             "hybridFramesSource": {
                 "type": "vectorSemiImplicitSource",
-                "active": bool(np.any(source)),
+                "active": bool(np.any(frame.source)),
                 "selectionMode": "cellZone",
                 "cellZone": ROTATING_ZONE,
                 "volumeMode": "specific",
-                "injectionRateSuSp": {"U": [_vector(source), 0.0]},
+                "injectionRateSuSp": {"U": [_vector(frame.source), 0.0]},
             }
         },
     )
@@ -159,9 +166,9 @@ def _transported_turbulence(dimensions: str, value: float, wall_function: str) -
     }
 
 
-def _fields(condition: Condition, s: CaseSettings) -> dict[str, dict]:
+def _fields(condition: Condition, frame: FrameSetup, s: CaseSettings) -> dict[str, dict]:
     # Field files: foamlib writes a plain value of a field entry as 'uniform <value>'.
-    inflow = _vector(condition.inflow())
+    inflow = _vector(frame.farfield_velocity)
     k = s.turbulence.k(condition.speed)
     omega = s.turbulence.omega(condition.speed, s.fluid.nu)
     return {
@@ -191,11 +198,11 @@ def _fields(condition: Condition, s: CaseSettings) -> dict[str, dict]:
     }
 
 
-def _write_fields(case: Path, condition: Condition, s: CaseSettings, warm_start: Path | None) -> None:
+def _write_fields(case: Path, condition: Condition, frame: FrameSetup, s: CaseSettings, warm_start: Path | None) -> None:
     zero = case / "0"
     if zero.exists():
         shutil.rmtree(zero)
-    for name, spec in _fields(condition, s).items():
+    for name, spec in _fields(condition, frame, s).items():
         # The patch group is written unquoted: a quoted "bodyWalls" would be a regular expression that
         # matches no patch name (groups are only matched by their plain name).
         boundary = {FARFIELD: spec["farfield"], WALL_GROUP: spec["wall"]}
@@ -230,6 +237,38 @@ def latest_time_dir(case: Path) -> Path | None:
     return max(times)[1] if times else None
 
 
+def _link_mesh(case: Path, mesh_case: Path, whole_domain_zone: bool) -> None:
+    """Link the shared mesh into ``case``. For the classic method the rotating zone must be every cell:
+    the case gets its own cellZones file (the rest of the mesh stays linked file by file, never copied)."""
+    link = case / "constant/polyMesh"
+    if link.is_symlink() or link.exists():
+        link.unlink() if link.is_symlink() else shutil.rmtree(link)
+    shared = mesh_case / "constant/polyMesh"
+    if not whole_domain_zone:
+        os.symlink(shared, link, target_is_directory=True)
+        return
+    link.mkdir()
+    for item in shared.iterdir():
+        if item.name != "cellZones":
+            os.symlink(item, link / item.name, target_is_directory=item.is_dir())
+    n_cells = mesh_cell_count(shared)
+    labels = "\n".join(map(str, range(n_cells)))
+    (link / "cellZones").write_text(
+        "FoamFile\n{\n    version 2.0;\n    format ascii;\n    class regIOobject;\n"
+        '    location "constant/polyMesh";\n    object cellZones;\n}\n\n'
+        f"1\n(\n{ROTATING_ZONE}\n{{\n    type cellZone;\n    cellLabels List<label> {n_cells}\n(\n{labels}\n)\n;\n}}\n)\n"
+    )
+
+
+def mesh_cell_count(poly_mesh: Path) -> int:
+    """The number of cells, from the note OpenFOAM writes in the header of polyMesh/owner."""
+    head = (Path(poly_mesh) / "owner").read_bytes()[:4096].decode("ascii", errors="replace")
+    found = re.search(r"nCells:\s*(\d+)", head)
+    if not found:
+        raise ConfigurationError(f"{poly_mesh}/owner has no nCells note in its header; cannot size the classic zone")
+    return int(found.group(1))
+
+
 def write_condition_case(
     case: str | Path,
     mesh_case: str | Path,
@@ -245,10 +284,8 @@ def write_condition_case(
     case, mesh_case = Path(case), Path(mesh_case).resolve()
     (case / "constant").mkdir(parents=True, exist_ok=True)
     (case / "system").mkdir(parents=True, exist_ok=True)
-    link = case / "constant/polyMesh"
-    if link.is_symlink() or link.exists():
-        link.unlink() if link.is_symlink() else shutil.rmtree(link)
-    os.symlink(mesh_case / "constant/polyMesh", link, target_is_directory=True)
+    frame = frame_setup(condition, settings.length, settings.method)
+    _link_mesh(case, mesh_case, whole_domain_zone=frame.whole_domain_rotates)
     _write_control(case, settings)
     write_numerics(case, settings.second_order)
     write_foam_dict(
@@ -256,6 +293,6 @@ def write_condition_case(
         {"numberOfSubdomains": settings.n_procs, "method": "hierarchical",
          "coeffs": {"n": [settings.n_procs, 1, 1], "order": "xyz"}},
     )
-    _write_physics(case, condition, settings)
-    _write_fields(case, condition, settings, warm_start)
+    _write_physics(case, frame, settings)
+    _write_fields(case, condition, frame, settings, warm_start)
     return case

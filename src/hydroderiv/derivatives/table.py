@@ -58,6 +58,7 @@ class DerivativeRow:
     value: float
     stderr: float
     nonlinear: float
+    offset: float
     single_point: float
     n_points: int
     reference: float | None
@@ -65,13 +66,20 @@ class DerivativeRow:
     experimental_uncertainty_pct: float
 
 
-def derivative_table(
-    results: list[dict], reference_key: str | None = None, nonlinear: str = "abs", fit_offset: bool = True
-) -> list[DerivativeRow]:
+@dataclass
+class SweepFit:
+    """One derivative's sweep: motion variable x, axial ratio u', coefficient y, and the fitted estimator."""
+
+    xs: np.ndarray
+    us: np.ndarray
+    ys: np.ndarray
+    fit: DerivativeFit
+
+
+def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = True) -> dict[str, SweepFit]:
     """Fit every derivative whose sweep has enough points. ``results`` are condition result records."""
-    reference = DERIVATIVES.get(reference_key or "", {}).get("values", {})
-    rows = []
-    for name, (sweep, coefficient, kind) in DEFINITIONS.items():
+    fits = {}
+    for name, (sweep, coefficient, _) in DEFINITIONS.items():
         xs, us, ys = [], [], []
         for record in results:
             condition = Condition(**record["condition"])
@@ -84,7 +92,19 @@ def derivative_table(
         xs, us, ys = map(np.asarray, (xs, us, ys))
         if len(np.unique(np.abs(xs[xs != 0]))) < 2:
             continue  # this sweep was not run (or has too few magnitudes for a slope and a nonlinear term)
-        fit = DerivativeFit(nonlinear=nonlinear, fit_offset=fit_offset).fit(xs, ys)
+        fits[name] = SweepFit(xs, us, ys, DerivativeFit(nonlinear=nonlinear, fit_offset=fit_offset).fit(xs, ys))
+    return fits
+
+
+def derivative_table(
+    results: list[dict], reference_key: str | None = None, nonlinear: str = "abs", fit_offset: bool = True
+) -> list[DerivativeRow]:
+    """The table rows: each fitted derivative beside its single-point value and the experiment."""
+    reference = DERIVATIVES.get(reference_key or "", {}).get("values", {})
+    rows = []
+    for name, sweep in fit_sweeps(results, nonlinear, fit_offset).items():
+        kind = DEFINITIONS[name][2]
+        fit, xs, us, ys = sweep.fit, sweep.xs, sweep.us, sweep.ys
         nonzero = xs != 0
         # single-point definitions: static Y'v = Y'/(u'v'); rotary Y'r = Y'/r'
         denominators = xs[nonzero] * (us[nonzero] if kind == "static" else 1.0)
@@ -96,6 +116,7 @@ def derivative_table(
                 value=fit.slope_,
                 stderr=fit.slope_stderr_,
                 nonlinear=fit.nonlinear_,
+                offset=fit.offset_,
                 single_point=single,
                 n_points=fit.n_points_,
                 reference=ref,

@@ -6,7 +6,7 @@ from pathlib import Path
 
 from rich.table import Table
 
-from .._io import atomic_write_bytes
+from ._figures import pyplot, save_figure
 
 
 def resistance_table(points: list[dict], title: str) -> Table:
@@ -33,13 +33,7 @@ def resistance_table(points: list[dict], title: str) -> Table:
 
 def plot_resistance(points: list[dict], path: str | Path, title: str) -> Path:
     """Resistance against speed: CFD (total, pressure, viscous) and the towing-tank points."""
-    import io
-
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
+    plt = pyplot()
     knots = [p["speed_knots"] for p in points]
     fig, ax = plt.subplots(figsize=(6.4, 4.4))
     ax.plot(knots, [p["resistance_N"] for p in points], "o-", label="CFD total")
@@ -53,9 +47,4 @@ def plot_resistance(points: list[dict], path: str | Path, title: str) -> Path:
     ax.set_title(title)
     ax.grid(alpha=0.3)
     ax.legend()
-    fig.tight_layout()
-    buffer = io.BytesIO()
-    fig.savefig(buffer, format="png", dpi=110)
-    plt.close(fig)
-    atomic_write_bytes(path, buffer.getvalue())
-    return Path(path)
+    return save_figure(fig, path)

@@ -8,6 +8,7 @@ Example::
     speed_knots = 6.5
     n_procs = 2
     work = "runs/aff8-coarse" # optional; default: runs/<file stem>
+    method = "hybrid"         # optional: "hybrid" (default) or "classic" (whole domain rotates, for verification)
 
     [sweeps]                  # one variable at a time about straight-ahead
     drift_deg = [-8, -4, 4, 8]
@@ -38,6 +39,7 @@ import numpy as np
 from .._io import atomic_write_text
 from ..case import KNOT, Condition
 from ..case.conditions import SWEEP_KEYS
+from ..case.frames import FRAME_METHODS
 from ..case.setup import CaseSettings, latest_time_dir
 from ..errors import ConfigurationError, HydroderivError
 from ..run.condition import read_result, run_condition
@@ -46,6 +48,7 @@ from ..run.solver import Progress
 from .workspace import Workspace, is_suboff
 
 FAILED_FILE = "failed.json"
+STUDY_KEYS = {"body", "body_dir", "level", "speed", "speed_knots", "n_procs", "work", "method"}
 
 
 def running_marker(case: Path) -> Path:
@@ -65,6 +68,7 @@ class Study:
     work: Path
     conditions: tuple[Condition, ...]
     criterion: ConvergenceCriterion = field(default_factory=ConvergenceCriterion)
+    method: str = "hybrid"
 
     @classmethod
     def load(cls, path: str | Path) -> Study:
@@ -98,6 +102,12 @@ class Study:
                 raise ConfigurationError(f"{path}: unknown condition keys {', '.join(sorted(bad))}")
             conditions.append(Condition(speed, **{k: float(v) for k, v in extra.items()}))
         unique = tuple(dict((c.name, c) for c in conditions).values())
+        method = head.get("method", "hybrid")
+        if method not in FRAME_METHODS:
+            raise ConfigurationError(f"{path}: unknown method {method!r}; choose one of {', '.join(FRAME_METHODS)}")
+        bad_keys = set(head) - STUDY_KEYS
+        if bad_keys:
+            raise ConfigurationError(f"{path}: unknown [study] key(s) {', '.join(sorted(bad_keys))}")
         allowed = {f.name for f in fields(ConvergenceCriterion)}
         conv = data.get("convergence", {})
         if set(conv) - allowed:
@@ -112,17 +122,25 @@ class Study:
             work=Path(head.get("work", Path("runs") / path.stem)),
             conditions=unique,
             criterion=ConvergenceCriterion(**conv),
+            method=method,
         )
 
     @property
     def workspace(self) -> Workspace:
-        return Workspace(self.work, self.level)
+        return Workspace(self.work, self.level, self.method)
+
+    def case_dir(self, condition: Condition) -> Path:
+        """Where ``condition`` runs. Without rotation both frame methods are the same translation, so a
+        classic study shares the straight runs of the hybrid one on the same mesh instead of repeating them."""
+        rotating = condition.yaw_rate_prime != 0 or condition.pitch_rate_prime != 0
+        workspace = self.workspace if rotating else Workspace(self.work, self.level)
+        return workspace.condition_dir(condition.name)
 
     def status(self) -> dict[str, list[str]]:
         """Conditions by state: done, running, failed, left."""
         states: dict[str, list[str]] = {"done": [], "running": [], "failed": [], "left": []}
         for c in self.conditions:
-            case = self.workspace.condition_dir(c.name)
+            case = self.case_dir(c)
             if read_result(case) is not None:
                 states["done"].append(c.name)
             elif _running(case):
@@ -155,13 +173,13 @@ def run_order(conditions: tuple[Condition, ...]) -> list[Condition]:
     return sorted(conditions, key=lambda c: (float(np.linalg.norm(_coordinates(c))), c.name))
 
 
-def nearest_finished(condition: Condition, finished: dict[str, Condition], ws: Workspace) -> Path | None:
-    """The solution of the finished condition closest to ``condition``: its warm start."""
+def nearest_finished(condition: Condition, finished: dict[Path, Condition]) -> Path | None:
+    """The solution of the finished condition closest to ``condition`` (finished: case dir -> condition)."""
     if not finished:
         return None
     here = _coordinates(condition)
-    name = min(finished, key=lambda n: (float(np.linalg.norm(_coordinates(finished[n]) - here)), n))
-    return latest_time_dir(ws.condition_dir(name))
+    case = min(finished, key=lambda d: (float(np.linalg.norm(_coordinates(finished[d]) - here)), finished[d].name))
+    return latest_time_dir(case)
 
 
 def run_study(
@@ -178,15 +196,15 @@ def run_study(
     body = ws.body(study.body, study.body_dir)
     ws.mesh(body, log=log)
     settings = CaseSettings(length=body.reference.length, components=body.component_names, n_procs=study.n_procs,
-                            max_iterations=study.criterion.max_iterations)
-    finished: dict[str, Condition] = {}
+                            max_iterations=study.criterion.max_iterations, method=study.method)
+    finished: dict[Path, Condition] = {}  # warm-start candidates
     results: dict[str, dict] = {}
     order = run_order(study.conditions)
     for number, condition in enumerate(order, start=1):
-        case = ws.condition_dir(condition.name)
+        case = study.case_dir(condition)
         done = read_result(case)
         if done is None:
-            start = nearest_finished(condition, finished, ws) if warm_start else None
+            start = nearest_finished(condition, finished) if warm_start else None
             log(f"[{number}/{len(order)}] {condition.name}" + (f" (warm start from {start.parent.name})" if start else " (cold start)"))
             case.mkdir(parents=True, exist_ok=True)
             (case / FAILED_FILE).unlink(missing_ok=True)
@@ -203,6 +221,9 @@ def run_study(
             log(f"    {'converged' if done['converged'] else 'NOT converged'} in {done['iterations']} iterations, {done['wall_seconds']:.0f} s")
         else:
             log(f"[{number}/{len(order)}] {condition.name}: done")
-        finished[condition.name] = condition
+        # A classic turn starts from fluid at rest far away; the straight runs it shares hold the hybrid
+        # inflow field, which would be a worse start than none.
+        if case == ws.condition_dir(condition.name):
+            finished[case] = condition
         results[condition.name] = done
     return results

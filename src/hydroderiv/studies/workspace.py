@@ -3,6 +3,8 @@
     <work>/geometry/            body.stl + body.json
     <work>/mesh-<level>/        the mesh case (built once, reused by every condition)
     <work>/conditions/<name>/   one case per condition, result.json when finished
+    <work>/conditions-classic/  the same for the classic frame method (never warm-started from hybrid
+                                solutions: the two solve for velocities in different frames)
 """
 
 from __future__ import annotations
@@ -21,6 +23,7 @@ from ..mesh import build_mesh
 class Workspace:
     root: Path
     level: str
+    method: str = "hybrid"
 
     @property
     def geometry_dir(self) -> Path:
@@ -31,7 +34,8 @@ class Workspace:
         return self.root / f"mesh-{self.level}"
 
     def condition_dir(self, name: str) -> Path:
-        return self.root / "conditions" / name
+        folder = "conditions" if self.method == "hybrid" else f"conditions-{self.method}"
+        return self.root / folder / name
 
     def body(self, config: str | None = None, body_dir: str | Path | None = None) -> Body:
         """The study's body: a SUBOFF configuration, or a body directory written by `hydroderiv geometry`."""

@@ -1,0 +1,38 @@
+"""Plots of the derivative fits: each sweep's coefficients against its motion variable, with the fit."""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+
+import numpy as np
+
+from ..derivatives.table import DEFINITIONS, SweepFit
+from ._figures import pyplot, save_figure
+
+_AXIS_LABELS = {"drift_deg": "v'", "pitch_deg": "w'", "yaw_rate_prime": "r'", "pitch_rate_prime": "q'"}
+
+
+def plot_fits(fits: dict[str, SweepFit], path: str | Path, title: str, reference: dict[str, float] | None = None) -> Path:
+    """One panel per derivative: the computed points, the fitted curve, and the experiment's slope."""
+    plt = pyplot()
+    names = list(fits)
+    columns = 2
+    rows = max(1, math.ceil(len(names) / columns))
+    fig, axes = plt.subplots(rows, columns, figsize=(9.0, 3.0 * rows), squeeze=False)
+    for ax, name in zip(axes.flat, names):
+        sweep, coefficient, _ = DEFINITIONS[name]
+        f = fits[name]
+        x = np.linspace(min(f.xs.min(), 0.0), max(f.xs.max(), 0.0), 100)
+        ax.plot(f.xs, f.ys, "o", label="CFD")
+        ax.plot(x, f.fit.predict(x), "-", label=f"fit, {name}' = {f.fit.slope_:+.5f}")
+        if reference and name in reference:
+            ax.plot(x, f.fit.offset_ + reference[name] * x, "k--", lw=1, label=f"experiment {reference[name]:+.5f}")
+        ax.set_xlabel(_AXIS_LABELS[sweep])
+        ax.set_ylabel(f"{coefficient}'")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7)
+    for ax in list(axes.flat)[len(names):]:
+        ax.set_visible(False)
+    fig.suptitle(title)
+    return save_figure(fig, path, dpi=100)
