@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import signal
 import sys
 from pathlib import Path
 from typing import Callable
@@ -227,8 +228,16 @@ def build_parser() -> argparse.ArgumentParser:
     return parser
 
 
+def _exit_on_terminate(signum, frame) -> None:
+    # SIGTERM (kill, a batch system) becomes SystemExit, so a running solver is stopped with us and not
+    # left orphaned on the cores; finished conditions are on disk and the next run resumes.
+    sys.exit(128 + signum)
+
+
 def main(argv: list[str] | None = None) -> int:
     args = build_parser().parse_args(argv)
+    if argv is None:  # the command line, not a test calling main() in-process
+        signal.signal(signal.SIGTERM, _exit_on_terminate)
     try:
         return args.func(args)
     except HydroderivError as error:

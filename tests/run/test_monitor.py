@@ -24,14 +24,26 @@ def test_log_watcher_takes_the_first_initial_residual_of_the_latest_iteration():
     w.feed(LOG[:200])  # a partial feed, cut mid-line
     w.feed(LOG[200:])
     assert w.iteration == 2
-    assert w.residuals == {"Ux": 0.2, "p": 0.5}
+    assert w.residuals == {"Ux": 0.2, "Uy": 0.9, "p": 0.5}  # Uy not solved yet in iteration 2: last known value
     assert w.divergence() is None
+
+
+def test_a_read_ending_right_after_the_time_line_does_not_freeze_the_residuals():
+    """MPI output often arrives up to 'Time = N' and stops there while the solve runs; the next read's
+    residuals belong to iteration N and must replace those of N - 1 (they once stayed at iteration 1)."""
+    w = LogWatcher()
+    cut = LOG.index("smoothSolver:  Solving for Ux, Initial residual = 0.2")
+    w.feed(LOG[:cut])
+    assert w.iteration == 2 and w.residuals["Ux"] == 1
+    w.feed(LOG[cut:])
+    assert w.residuals == {"Ux": 0.2, "Uy": 0.9, "p": 0.5}
 
 
 def test_nan_and_exploding_residuals_are_divergence():
     w = LogWatcher()
     w.feed("Time = 7\n\nsmoothSolver:  Solving for Ux, Initial residual = nan, Final residual = nan, No Iterations 1000\n")
     assert "Ux residual is nan at iteration 7" in w.divergence()
+    w = LogWatcher()
     w.feed("Time = 8\n\nGAMG:  Solving for p, Initial residual = 5e+06, Final residual = 1, No Iterations 1000\n")
     assert "exploded" in w.divergence()
 

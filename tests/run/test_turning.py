@@ -35,22 +35,31 @@ def runs(coarse_bare_hull, tmp_path_factory):
         key = (condition, method)
         if key not in done:
             settings = CaseSettings(length=L, components=("hull",), n_procs=2, max_iterations=800, method=method)
+            # 1 % over the window is enough for comparisons at the 5 % level. The classic domain keeps a
+            # slow oscillation of about +-0.8 % in X' (a period of ~120 iterations; its open far field is
+            # swept by the frame at up to 2 U), so it gets 2 %.
+            tolerance = 0.02 if method == "classic" else 0.01
             done[key] = run_condition(root / f"{method}-{condition.name}", mesh_case, condition, settings,
-                                      ConvergenceCriterion(min_iterations=100))
+                                      ConvergenceCriterion(min_iterations=100, rel_tol=tolerance))
         return done[key]
 
     return get
 
 
 def _mirrored(a: dict, b: dict, tolerance: float) -> None:
-    """Odd coefficients change sign, even ones stay; within ``tolerance`` of their size, or within the
-    convergence criterion's absolute tolerance where they are tiny (a bare hull's rotary Y' is ~2e-5)."""
+    """Odd coefficients (Y', N') change sign and even ones (X', M') stay: X' to within ``tolerance`` of
+    itself, the others to within ``tolerance`` of the largest lateral load max(|Y'|, |N'|).
+
+    The background grid is shifted by a third of a cell in y as well as z (see GRID_SHIFT), so the mesh is
+    only nearly its own mirror image; measured on the coarse bare hull in r' = +-0.2: X' differs by 1.2 %,
+    N' by 2.8 % and Y' (~2e-5) by 3e-6.
+    """
     ca, cb = a["coefficients"], b["coefficients"]
-    floor = ConvergenceCriterion().abs_tol
+    odd_scale = max(abs(ca["Y"]), abs(ca["N"]))
     for odd in ("Y", "N"):
-        assert abs(ca[odd] + cb[odd]) <= max(tolerance * abs(ca[odd]), floor), (odd, ca[odd], cb[odd])
-    for even in ("X", "M"):
-        assert cb[even] == pytest.approx(ca[even], rel=tolerance, abs=floor), (even, ca[even], cb[even])
+        assert abs(ca[odd] + cb[odd]) <= tolerance * odd_scale, (odd, ca[odd], cb[odd])
+    assert abs(cb["X"] - ca["X"]) <= tolerance * abs(ca["X"]), (ca["X"], cb["X"])
+    assert abs(cb["M"] - ca["M"]) <= tolerance * odd_scale, (ca["M"], cb["M"])
 
 
 def test_port_turn_mirrors_the_starboard_turn(runs):

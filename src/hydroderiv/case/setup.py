@@ -17,9 +17,9 @@ from pathlib import Path
 import numpy as np
 
 from .._foam import quoted, write_foam_dict
+from ..errors import ConfigurationError
 from ..mesh.snappy import FARFIELD, ROTATING_ZONE, WALL_GROUP
 from ..run.solver import STOP_FILE, TOTAL_FORCES, component_function_name
-from ..errors import ConfigurationError
 from .conditions import Condition
 from .fluid import Fluid, FreestreamTurbulence
 from .frames import FRAME_METHODS, FrameSetup, frame_setup
@@ -171,19 +171,27 @@ def _fields(condition: Condition, frame: FrameSetup, s: CaseSettings) -> dict[st
     inflow = _vector(frame.farfield_velocity)
     k = s.turbulence.k(condition.speed)
     omega = s.turbulence.omega(condition.speed, s.fluid.nu)
+    if frame.whole_domain_rotates:
+        # Fluid at rest far away: an open boundary at zero total pressure that lets the body's displacement
+        # flow in and out. (freestreamVelocity divides by the free-stream speed, which is zero here.)
+        farfield_u = {"type": "pressureInletOutletVelocity", "value": inflow}
+        farfield_p = {"type": "totalPressure", "p0": 0.0, "value": 0.0}
+    else:
+        farfield_u = {"type": "freestreamVelocity", "freestreamValue": inflow, "value": inflow}
+        farfield_p = {"type": "freestreamPressure", "freestreamValue": 0.0, "value": 0.0}
     return {
         "U": {
             "class": "volVectorField",
             "dimensions": "[0 1 -1 0 0 0 0]",
             "internal": inflow,
-            "farfield": {"type": "freestreamVelocity", "freestreamValue": inflow, "value": inflow},
+            "farfield": farfield_u,
             "wall": {"type": "noSlip"},
         },
         "p": {
             "class": "volScalarField",
             "dimensions": "[0 2 -2 0 0 0 0]",
             "internal": 0.0,
-            "farfield": {"type": "freestreamPressure", "freestreamValue": 0.0, "value": 0.0},
+            "farfield": farfield_p,
             "wall": {"type": "zeroGradient"},
         },
         "k": _transported_turbulence("[0 2 -2 0 0 0 0]", k, "kqRWallFunction"),

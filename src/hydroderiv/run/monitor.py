@@ -15,11 +15,18 @@ _RESIDUAL = re.compile(r"Solving for (\w+), Initial residual = ([^,]+),")
 
 @dataclass
 class LogWatcher:
-    """Reads a solver log incrementally: the latest iteration and the initial residual of each field."""
+    """Reads a solver log incrementally: the latest iteration and the initial residual of each field.
+
+    A field's first solve in an iteration carries its initial residual. Reads may end anywhere, also right
+    after a ``Time = N`` line, so the fields already seen in the current iteration are tracked across reads:
+    a later solve of the same field in that iteration (a corrector) must not overwrite its value, and a field
+    not yet solved keeps the previous iteration's value on show.
+    """
 
     iteration: int = 0
     residuals: dict[str, float] = field(default_factory=dict)
     _buffer: str = ""
+    _seen: set[str] = field(default_factory=set)  # fields solved so far in the current iteration
 
     def feed(self, text: str) -> None:
         text = self._buffer + text
@@ -33,14 +40,11 @@ class LogWatcher:
                     self.iteration = int(float(times[-1]))
                 except ValueError:
                     pass
-            found: dict[str, float] = {}
+                self._seen = set()
             for name, value in _RESIDUAL.findall(block):
-                # the first solve of a field in an iteration carries its initial residual
-                found.setdefault(name, _to_float(value))
-            if times and found:  # a block cut before its first solve keeps the previous residuals on show
-                self.residuals = found
-            elif found:  # the rest of an iteration whose start came with the previous feed
-                self.residuals = {**found, **self.residuals}
+                if name not in self._seen:
+                    self._seen.add(name)
+                    self.residuals[name] = _to_float(value)
 
     def divergence(self, limit: float = 1e3) -> str | None:
         """A reason to call the run diverged, or None."""

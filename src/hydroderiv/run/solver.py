@@ -66,6 +66,17 @@ def coefficient_history(case: Path, scales: PrimeScales, function: str = TOTAL_F
     return force.iterations[:n], scales.coefficients(force.total[:n], moment.total[:n])
 
 
+def _stop(process: subprocess.Popen, grace_seconds: float = 10.0) -> None:
+    """Stop the solver. SIGTERM first: mpirun passes it on to its ranks, while a SIGKILL of mpirun would
+    leave the ranks running on the cores."""
+    process.terminate()
+    try:
+        process.wait(timeout=grace_seconds)
+    except subprocess.TimeoutExpired:
+        process.kill()
+        process.wait()
+
+
 def run_steady(
     case: Path,
     scales: PrimeScales,
@@ -99,8 +110,7 @@ def run_steady(
                 iterations, coefficients = coefficient_history(case, scales)
                 diverged = watcher.divergence() or force_divergence(coefficients)
                 if diverged:
-                    process.kill()
-                    process.wait()
+                    _stop(process)
                     break
                 spread = criterion.spread(coefficients) if len(coefficients) >= criterion.window else None
                 if on_progress:
@@ -113,8 +123,7 @@ def run_steady(
                     stop_requested = True
                 time.sleep(poll_seconds)
         except BaseException:
-            process.kill()
-            process.wait()
+            _stop(process)
             raise
     (case / STOP_FILE).unlink(missing_ok=True)
     log_text = log_path.read_text(errors="replace")
