@@ -1,5 +1,7 @@
 """Study files: what they describe, and clear errors for what they get wrong."""
 
+from pathlib import Path
+
 import pytest
 
 from hydroderiv.case import KNOT, Condition
@@ -86,3 +88,9 @@ def test_a_classic_study_shares_the_straight_runs_and_keeps_its_turns_apart(tmp_
     assert classic.case_dir(straight) == hybrid.case_dir(straight)
     assert classic.case_dir(drift) == hybrid.case_dir(drift)
     assert classic.case_dir(turn) != hybrid.case_dir(turn) and classic.case_dir(turn).parent.name == "conditions-classic"
+
+
+@pytest.mark.parametrize("path", sorted((Path(__file__).parents[2] / "studies").glob("*.toml")), ids=lambda p: p.name)
+def test_every_committed_study_file_loads(path):
+    study = Study.load(path)
+    assert study.conditions[0] == Condition(study.speed) and len(study.conditions) > 1
