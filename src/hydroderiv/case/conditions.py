@@ -69,6 +69,10 @@ class Condition:
             f"_r{fmt(self.yaw_rate_prime)}_q{fmt(self.pitch_rate_prime)}"
         )
 
+    @property
+    def is_turning(self) -> bool:
+        return self.yaw_rate_prime != 0.0 or self.pitch_rate_prime != 0.0
+
     def body_velocity(self) -> np.ndarray:
         """Velocity V = (u, v, w) of the moment centre in body axes, m/s."""
         a, b = math.radians(self.pitch_deg), math.radians(self.drift_deg)

@@ -49,9 +49,8 @@ def frame_setup(condition: Condition, length: float, method: str = "hybrid") -> 
     if method not in FRAME_METHODS:
         raise ConfigurationError(f"unknown frame method {method!r}; choose one of {', '.join(FRAME_METHODS)}")
     omega = condition.angular_velocity(length)
-    origin = np.zeros(3)
-    if method == "hybrid" or not omega.any():
-        return FrameSetup(condition.inflow(), omega, origin, condition.momentum_source(length), False)
+    if method == "hybrid" or not condition.is_turning:
+        return FrameSetup(condition.inflow(), omega, np.zeros(3), condition.momentum_source(length), False)
     velocity = condition.body_velocity()
     along_axis = float(velocity @ omega) / float(np.linalg.norm(omega))
     if abs(along_axis) > 1e-9 * condition.speed:

@@ -90,4 +90,3 @@ def openfoam_version_from_log(log_text: str) -> str | None:
     """The release recorded in a log header, e.g. '1912' from 'Build  : OPENFOAM=1912 patch=200626'."""
     match = re.search(r"OPENFOAM=(\d+)", log_text) or re.search(r"Version:\s+v?(\d{4})", log_text)
     return match.group(1) if match else None
-

@@ -132,8 +132,7 @@ class Study:
     def case_dir(self, condition: Condition) -> Path:
         """Where ``condition`` runs. Without rotation both frame methods are the same translation, so a
         classic study shares the straight runs of the hybrid one on the same mesh instead of repeating them."""
-        rotating = condition.yaw_rate_prime != 0 or condition.pitch_rate_prime != 0
-        workspace = self.workspace if rotating else Workspace(self.work, self.level)
+        workspace = self.workspace if condition.is_turning else Workspace(self.work, self.level)
         return workspace.condition_dir(condition.name)
 
     def status(self) -> dict[str, list[str]]:
@@ -223,7 +222,7 @@ def run_study(
             log(f"[{number}/{len(order)}] {condition.name}: done")
         # A classic turn starts from fluid at rest far away; the straight runs it shares hold the hybrid
         # inflow field, which would be a worse start than none.
-        if case == ws.condition_dir(condition.name):
+        if study.method == "hybrid" or condition.is_turning:
             finished[case] = condition
         results[condition.name] = done
     return results
