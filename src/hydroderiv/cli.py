@@ -137,7 +137,7 @@ def _study_status(args: argparse.Namespace) -> int:
 
 
 def _derivatives(args: argparse.Namespace) -> int:
-    from .derivatives.table import derivative_table, fit_sweeps, write_table
+    from .derivatives.table import fit_sweeps, table_rows, write_table
     from .experiments import DERIVATIVES
     from .report.derivatives import plot_fits
     from .run.condition import read_result
@@ -145,7 +145,8 @@ def _derivatives(args: argparse.Namespace) -> int:
 
     study = Study.load(args.file)
     results = [r for c in study.conditions if (r := read_result(study.case_dir(c)))]
-    rows = derivative_table(results, reference_key=study.body)
+    fits = fit_sweeps(results)  # once: the table and the plot show the same fits
+    rows = table_rows(fits, reference_key=study.body)
     if not rows:
         raise HydroderivError(f"no sweep of {study.path} has enough finished conditions for a derivative yet")
     table = Table(title=f"derivatives, {study.body or study.body_dir} on the {study.level} mesh (prime units, L-based)")
@@ -161,7 +162,7 @@ def _derivatives(args: argparse.Namespace) -> int:
             "conditions": len(results)}
     paths = write_table(rows, out, meta)
     reference = DERIVATIVES.get(study.body or "", {}).get("values")
-    plot = plot_fits(fit_sweeps(results), out.with_suffix(".png"), f"{study.body or study.body_dir}, {study.level} mesh", reference)
+    plot = plot_fits(fits, out.with_suffix(".png"), f"{study.body or study.body_dir}, {study.level} mesh", reference)
     console.print(f"written: {paths[0]}, {paths[1]}, {plot}")
     return 0
 

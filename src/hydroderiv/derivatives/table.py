@@ -100,9 +100,14 @@ def derivative_table(
     results: list[dict], reference_key: str | None = None, nonlinear: str = "abs", fit_offset: bool = True
 ) -> list[DerivativeRow]:
     """The table rows: each fitted derivative beside its single-point value and the experiment."""
+    return table_rows(fit_sweeps(results, nonlinear, fit_offset), reference_key)
+
+
+def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> list[DerivativeRow]:
+    """The table rows of sweeps already fitted by :func:`fit_sweeps`."""
     reference = DERIVATIVES.get(reference_key or "", {}).get("values", {})
     rows = []
-    for name, sweep in fit_sweeps(results, nonlinear, fit_offset).items():
+    for name, sweep in fits.items():
         kind = DEFINITIONS[name][2]
         fit, xs, us, ys = sweep.fit, sweep.xs, sweep.us, sweep.ys
         nonzero = xs != 0
