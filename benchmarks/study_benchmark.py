@@ -21,6 +21,7 @@ import re
 import shutil
 import sys
 import time
+from dataclasses import replace
 from pathlib import Path
 
 from hydroderiv._io import atomic_write_text
@@ -46,8 +47,7 @@ def fixed_iterations(study: Study, settings: CaseSettings, n_procs: int, iterati
     log = case / "log.simpleFoam"
     if not (case / "done").is_file():
         shutil.rmtree(case, ignore_errors=True)  # an interrupted timing restarts from scratch, not mid-run
-        fixed = CaseSettings(length=settings.length, components=settings.components, n_procs=n_procs,
-                             max_iterations=iterations, write_interval=iterations, method=settings.method)
+        fixed = replace(settings, n_procs=n_procs, max_iterations=iterations, write_interval=iterations)
         straight = study.conditions[0]
         write_condition_case(case, study.workspace.mesh_dir, straight, fixed, warm_start=warm)
         if n_procs > 1:
@@ -71,8 +71,7 @@ def main(argv: list[str] | None = None) -> int:
     mesh = json.loads((study.workspace.mesh_dir / "mesh.json").read_text())
     cells = int(mesh["cells"])
     body = study.workspace.body(study.body, study.body_dir)
-    settings = CaseSettings(length=body.reference.length, components=body.component_names, n_procs=study.n_procs,
-                            max_iterations=study.criterion.max_iterations, method=study.method)
+    settings = study.case_settings(body)
 
     rows = []
     for condition in run_order(study.conditions):

@@ -42,6 +42,7 @@ from ..case.conditions import SWEEP_KEYS
 from ..case.frames import FRAME_METHODS
 from ..case.setup import CaseSettings, latest_time_dir
 from ..errors import ConfigurationError, HydroderivError
+from ..geometry import Body
 from ..run.condition import read_result, run_condition
 from ..run.monitor import ConvergenceCriterion
 from ..run.solver import Progress
@@ -129,6 +130,11 @@ class Study:
     def workspace(self) -> Workspace:
         return Workspace(self.work, self.level, self.method)
 
+    def case_settings(self, body: Body) -> CaseSettings:
+        """What every condition of this study needs besides the condition itself."""
+        return CaseSettings(length=body.reference.length, components=body.component_names, n_procs=self.n_procs,
+                            max_iterations=self.criterion.max_iterations, method=self.method)
+
     def case_dir(self, condition: Condition) -> Path:
         """Where ``condition`` runs. Without rotation both frame methods are the same translation, so a
         classic study shares the straight runs of the hybrid one on the same mesh instead of repeating them."""
@@ -194,8 +200,7 @@ def run_study(
     ws = study.workspace
     body = ws.body(study.body, study.body_dir)
     ws.mesh(body, log=log)
-    settings = CaseSettings(length=body.reference.length, components=body.component_names, n_procs=study.n_procs,
-                            max_iterations=study.criterion.max_iterations, method=study.method)
+    settings = study.case_settings(body)
     finished: dict[Path, Condition] = {}  # warm-start candidates
     results: dict[str, dict] = {}
     order = run_order(study.conditions)
