@@ -276,6 +276,34 @@ def write_mesh_case(case: Path, body: Body, design: MeshDesign) -> None:
     _write_snappy(case, design, body.component_names)
 
 
+def _run_steps(case: Path, steps: list[tuple[str, list[str]]], log: Callable[[str], None]) -> dict[str, float]:
+    """Run the meshing utilities in order; returns the wall time of each step.
+
+    Step timings are kept on disk, so a mesh checked again after an interruption still reports its cost.
+    """
+    timings_path = case / "timings.json"
+    timings = json.loads(timings_path.read_text()) if timings_path.is_file() else {}
+    for name, command in steps:
+        log(f"  {name} ...")
+        t0 = time.monotonic()
+        run_application(case, command, log_name=name)
+        timings[name] = round(time.monotonic() - t0, 1)
+        atomic_write_text(timings_path, json.dumps(timings))
+    return timings
+
+
+def _quality_gate(case: Path, log: Callable[[str], None]) -> dict:
+    """The checkMesh verdict on ``case``: hard failures raise :class:`MeshQualityError`, soft ones are logged."""
+    check = parse_check_mesh((case / "log.checkMesh").read_text())
+    if not check["ok"]:
+        raise MeshQualityError(
+            f"checkMesh failed on {case}: {'; '.join(check['problems']) or 'no cells'}; log: {case / 'log.checkMesh'}"
+        )
+    for warning in check["warnings"]:
+        log(f"  checkMesh warning (accepted): {warning}")
+    return check
+
+
 def build_mesh(
     body: Body,
     level: str,
@@ -312,22 +340,8 @@ def build_mesh(
             ("snappyHexMesh", ["snappyHexMesh", "-overwrite"]),
             ("checkMesh", ["checkMesh", "-constant"]),
         ]
-    # Step timings are kept on disk, so a mesh checked again after an interruption still reports its cost.
-    timings_path = case / "timings.json"
-    timings = json.loads(timings_path.read_text()) if timings_path.is_file() else {}
-    for name, command in steps:
-        log(f"  {name} ...")
-        t0 = time.monotonic()
-        run_application(case, command, log_name=name)
-        timings[name] = round(time.monotonic() - t0, 1)
-        atomic_write_text(timings_path, json.dumps(timings))
-    check = parse_check_mesh((case / "log.checkMesh").read_text())
-    if not check["ok"]:
-        raise MeshQualityError(
-            f"checkMesh failed on {case}: {'; '.join(check['problems']) or 'no cells'}; log: {case / 'log.checkMesh'}"
-        )
-    for warning in check["warnings"]:
-        log(f"  checkMesh warning (accepted): {warning}")
+    timings = _run_steps(case, steps, log)
+    check = _quality_gate(case, log)
     layers = design.layers()
     report = {
         "level": level,
@@ -367,13 +381,9 @@ def build_empty_domain(case: str | Path, design: MeshDesign, log: Callable[[str]
     _write_meshing_controls(case)
     _write_block_mesh(case, design)
     _write_snappy(case, design, ())
-    for name, command in (("blockMesh", ["blockMesh"]), ("snappyHexMesh", ["snappyHexMesh", "-overwrite"]),
-                          ("checkMesh", ["checkMesh", "-constant"])):
-        log(f"  {name} ...")
-        run_application(case, command, log_name=name)
-    check = parse_check_mesh((case / "log.checkMesh").read_text())
-    if not check["ok"]:
-        raise MeshQualityError(f"checkMesh failed on the empty domain {case}: {'; '.join(check['problems'])}")
+    _run_steps(case, [("blockMesh", ["blockMesh"]), ("snappyHexMesh", ["snappyHexMesh", "-overwrite"]),
+                      ("checkMesh", ["checkMesh", "-constant"])], log)
+    check = _quality_gate(case, log)
     report = {"cells": check["cells"], "checkMesh": check,
               "rotating_sphere": {"radius_m": design.sphere_radius, **sphere_interface_spread(case, design.sphere_radius)}}
     atomic_write_text(case / REPORT_FILE, json.dumps(report, indent=2) + "\n")
