@@ -74,6 +74,7 @@ def _write_control(case: Path, s: CaseSettings) -> None:
     }
     if s.components:  # an empty domain (frame verification) has no body to integrate over
         functions[TOTAL_FORCES] = {**force_common, "patches": list(s.components)}
+        functions["yPlus"] = {"type": "yPlus", "libs": [quoted("libfieldFunctionObjects.so")], "writeControl": "writeTime"}
     # Each forces function object evaluates the viscous stress over the whole mesh; per-component
     # breakdowns only need sampling, so they run every COMPONENT_INTERVAL iterations.
     for component in s.components:
@@ -84,8 +85,6 @@ def _write_control(case: Path, s: CaseSettings) -> None:
             "executeInterval": COMPONENT_INTERVAL,
             "writeInterval": COMPONENT_INTERVAL,
         }
-    if s.components:
-        functions["yPlus"] = {"type": "yPlus", "libs": [quoted("libfieldFunctionObjects.so")], "writeControl": "writeTime"}
     # Creating the file STOP in the case makes the solver write and exit: the convergence monitor's brake.
     functions["stop"] = {
         "type": "abort",
