@@ -61,10 +61,10 @@ def _progress_printer(label: Callable[[object], str], every: int = 25):
         last[key] = p.iteration
         residuals = " ".join(f"{k} {v:.1e}" for k, v in p.residuals.items())
         x, y, z, k, m, n = p.coefficients
-        spread = "-" if p.spread is None else f"{p.spread.max():.2f}"
+        drift = "-" if p.drift is None else f"{p.drift.max():.2f}"
         console.print(
             f"  {label(key)} it {p.iteration:5d} | {residuals} | X' {x:+.3e} Y' {y:+.2e} Z' {z:+.2e} "
-            f"M' {m:+.2e} N' {n:+.2e} | window spread/tol {spread} | {p.elapsed:.0f} s",
+            f"M' {m:+.2e} N' {n:+.2e} | drift/tol {drift} | {p.elapsed:.0f} s",
             highlight=False,
         )
 

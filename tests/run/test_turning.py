@@ -35,9 +35,9 @@ def runs(coarse_bare_hull, tmp_path_factory):
         key = (condition, method)
         if key not in done:
             settings = CaseSettings(length=L, components=("hull",), n_procs=2, max_iterations=800, method=method)
-            # 1 % over the window is enough for comparisons at the 5 % level. The classic domain keeps a
-            # slow oscillation of about +-0.8 % in X' (a period of ~120 iterations; its open far field is
-            # swept by the frame at up to 2 U), so it gets 2 %.
+            # A mean drifting by 1 % of the load over the window is enough for comparisons at the 5 %
+            # level. The classic domain keeps a slow oscillation of about +-0.8 % in X' (a period of ~120
+            # iterations; its open far field is swept by the frame at up to 2 U), so it gets 2 %.
             tolerance = 0.02 if method == "classic" else 0.01
             done[key] = run_condition(root / f"{method}-{condition.name}", mesh_case, condition, settings,
                                       ConvergenceCriterion(min_iterations=100, rel_tol=tolerance))

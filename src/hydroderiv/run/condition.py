@@ -96,7 +96,10 @@ def run_condition(
         "components": {
             name: dict(zip(COEFFICIENT_NAMES, map(float, values))) for name, values in result.components.items()
         },
+        # peak-to-peak and standard deviation of each coefficient over the averaging window: the iterative
+        # uncertainty of the mean above
         "window_spread": np.ptp(result.history[-criterion.window :], axis=0).tolist(),
+        "window_std": np.std(result.history[-criterion.window :], axis=0).tolist(),
         "yplus": _yplus_summary(case),
         "reference": {"rho": settings.fluid.rho, "speed": condition.speed, "length": settings.length},
         "openfoam_version": openfoam_version_from_log((case / "log.simpleFoam").read_text(errors="replace")),

@@ -35,7 +35,7 @@ class Progress:
     iteration: int
     residuals: dict[str, float]
     coefficients: np.ndarray | None  # latest (X', Y', Z', K', M', N')
-    spread: np.ndarray | None  # window spread / tolerance per coefficient (<= 1 is converged)
+    drift: np.ndarray | None  # drift of the window mean / tolerance per coefficient (<= 1 is converged)
     elapsed: float
 
 
@@ -112,10 +112,10 @@ def run_steady(
                 if diverged:
                     _stop(process)
                     break
-                spread = criterion.spread(coefficients) if len(coefficients) >= criterion.window else None
+                drift = criterion.drift(coefficients) if len(coefficients) >= criterion.window else None
                 if on_progress:
                     latest = coefficients[-1] if len(coefficients) else None
-                    on_progress(Progress(watcher.iteration, dict(watcher.residuals), latest, spread, time.monotonic() - start))
+                    on_progress(Progress(watcher.iteration, dict(watcher.residuals), latest, drift, time.monotonic() - start))
                 if finished:
                     break
                 if not stop_requested and criterion.is_met(iterations, coefficients):
@@ -136,7 +136,7 @@ def run_steady(
     if len(coefficients) == 0:
         raise OpenFOAMError(f"simpleFoam wrote no forces in {case}; log: {log_path}")
     # Converged if the criterion stopped the run (the solver may run an iteration or two past the request,
-    # nudging a spread just over its tolerance), or if it holds at the end.
+    # nudging a drift just over its tolerance), or if it holds at the end.
     converged = stop_requested or criterion.is_met(iterations, coefficients)
     per_component = {}
     for name in components:
