@@ -150,10 +150,12 @@ def _derivatives(args: argparse.Namespace) -> int:
     if not rows:
         raise HydroderivError(f"no sweep of {study.path} has enough finished conditions for a derivative yet")
     table = Table(title=f"derivatives, {study.body or study.body_dir} on the {study.level} mesh (prime units, L-based)")
-    for column in ("derivative", "fit", "std. error", "single-point", "points", "experiment", "error (%)", "exp. unc. (%)"):
+    for column in ("derivative", "fit", "std. error", "iterative", "single-point", "points", "experiment", "error (%)",
+                   "exp. unc. (%)"):
         table.add_column(column, justify="right")
     for row in rows:
-        table.add_row(row.name, f"{row.value:+.5f}", f"{row.stderr:.1e}", f"{row.single_point:+.5f}", str(row.n_points),
+        table.add_row(row.name, f"{row.value:+.5f}", f"{row.stderr:.1e}", f"{row.iterative_stderr:.1e}",
+                      f"{row.single_point:+.5f}", str(row.n_points),
                       "-" if row.reference is None else f"{row.reference:+.6f}",
                       "-" if row.error_pct is None else f"{row.error_pct:+.1f}", f"{row.experimental_uncertainty_pct:.0f}")
     console.print(table)

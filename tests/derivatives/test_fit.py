@@ -27,6 +27,20 @@ def test_standard_error_reflects_scatter():
     assert abs(fit.slope_ + 0.0139) < 4 * fit.slope_stderr_ + 1e-6
 
 
+def test_iterative_uncertainty_of_the_points_carries_through_the_fit():
+    # A straight line through two points +-h: slope = (y2 - y1) / 2h, so its deviation is sqrt(2) s / 2h.
+    fit = DerivativeFit(nonlinear="none").fit([-0.1, 0.1], [0.001, -0.001], y_std=[1e-5, 1e-5])
+    assert fit.slope_iterative_stderr_ == pytest.approx(np.sqrt(2) * 1e-5 / 0.2)
+    # and it agrees with the spread of slopes over many noisy realisations of a longer sweep
+    rng = np.random.default_rng(3)
+    v = np.linspace(-0.14, 0.14, 5)
+    s = np.array([1e-5, 2e-5, 0.0, 2e-5, 1e-5])
+    slopes = [DerivativeFit(fit_offset=True).fit(v, -0.0278 * v + rng.normal(0, 1, 5) * s).slope_ for _ in range(4000)]
+    one = DerivativeFit(fit_offset=True).fit(v, -0.0278 * v, y_std=s)
+    assert one.slope_iterative_stderr_ == pytest.approx(np.std(slopes), rel=0.05)
+    assert np.isnan(DerivativeFit().fit(v, -0.0278 * v).slope_iterative_stderr_)
+
+
 def test_offset_absorbs_a_constant_asymmetry():
     w = np.linspace(-0.2, 0.2, 7)
     fit = DerivativeFit(nonlinear="abs", fit_offset=True).fit(w, 3e-4 - 0.0139 * w)

@@ -42,6 +42,19 @@ def test_fits_each_sweep_and_compares_with_the_experiment(tmp_path):
     json_path, csv_path = write_table(list(rows.values()), tmp_path / "d.json", {"level": "x"})
     data = json.loads(json_path.read_text())
     assert data["Yr"] == rows["Yr"].value and "Yr" in csv_path.read_text()
+    assert data["details"]["Yr"]["iterative_stderr"] is None  # records without a window deviation: null, not NaN
+
+
+def test_the_window_deviation_of_each_point_gives_the_iterative_uncertainty():
+    results = synthetic_results()
+    for r in results:
+        r["window_std"] = [0.0, 2e-6, 0.0, 0.0, 0.0, 0.0]  # Y' swings, N' is still
+    rows = {r.name: r for r in derivative_table(results)}
+    assert rows["Yr"].iterative_stderr > 0 and rows["Yv"].iterative_stderr > 0
+    assert rows["Nr"].iterative_stderr == 0.0
+    # four turns at r' = +-0.1, +-0.2 with an offset and a nonlinear term: the slope's deviation is a few
+    # times the points' deviation over the sweep's range
+    assert 2e-6 / 0.4 < rows["Yr"].iterative_stderr < 20 * 2e-6 / 0.4
 
 
 def test_mirror_symmetric_data_give_no_offset():

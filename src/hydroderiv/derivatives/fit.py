@@ -25,7 +25,12 @@ class DerivativeFit:
 
     Parameters (configuration only, as in scikit-learn): ``nonlinear`` in {'abs', 'cubic', 'none'} and
     ``fit_offset``. :meth:`fit` returns ``self`` with the fitted attributes ``slope_``, ``slope_stderr_``,
-    ``nonlinear_``, ``nonlinear_stderr_``, ``offset_``, ``residual_rms_`` and ``n_points_``.
+    ``slope_iterative_stderr_``, ``nonlinear_``, ``nonlinear_stderr_``, ``offset_``, ``residual_rms_`` and
+    ``n_points_``.
+
+    Two uncertainties of the slope: ``slope_stderr_`` from the scatter of the points about the fit, and
+    ``slope_iterative_stderr_`` from the points' own iterative uncertainty (``y_std`` given to :meth:`fit`,
+    the standard deviation of each coefficient over its averaging window) carried through the same fit.
     """
 
     def __init__(self, nonlinear: str = "abs", fit_offset: bool = False):
@@ -43,7 +48,7 @@ class DerivativeFit:
             columns.append(np.ones_like(x))
         return np.column_stack(columns)
 
-    def fit(self, x, y) -> DerivativeFit:
+    def fit(self, x, y, y_std=None) -> DerivativeFit:
         x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
         design = self._design(x)
         n, p = design.shape
@@ -57,8 +62,15 @@ class DerivativeFit:
         dof = n - p
         # Standard errors from the residual variance; with no spare points there is none to estimate.
         sigma2 = float(residual @ residual) / dof if dof > 0 else np.nan
-        cov = sigma2 * np.linalg.inv(design.T @ design)
-        stderr = np.sqrt(np.diag(cov))
+        inverse = np.linalg.inv(design.T @ design)
+        stderr = np.sqrt(np.diag(sigma2 * inverse))
+        if y_std is None:
+            self.slope_iterative_stderr_ = np.nan
+        else:
+            # the coefficients are a linear map of y, (D'D)^-1 D' y, so independent point variances carry
+            # through as (D'D)^-1 D' diag(s^2) D (D'D)^-1
+            sensitivity = inverse @ design.T
+            self.slope_iterative_stderr_ = float(np.sqrt(sensitivity[0] ** 2 @ np.asarray(y_std, dtype=float) ** 2))
         self.slope_, self.slope_stderr_ = float(coef[0]), float(stderr[0])
         has_nonlinear = NONLINEAR_TERMS[self.nonlinear] is not None
         self.nonlinear_ = float(coef[1]) if has_nonlinear else 0.0

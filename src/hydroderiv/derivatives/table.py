@@ -25,6 +25,7 @@ from .._io import atomic_write_text
 from ..case import Condition
 from ..case.conditions import SWEEP_KEYS
 from ..experiments import DERIVATIVES, DERIVATIVE_UNCERTAINTY
+from ..forces import COEFFICIENT_NAMES
 from .fit import DerivativeFit
 
 # derivative -> (sweep variable of Condition, force coefficient, static or rotary)
@@ -56,7 +57,8 @@ def _on_sweep(condition: Condition, sweep: str) -> bool:
 class DerivativeRow:
     name: str
     value: float
-    stderr: float
+    stderr: float  # from the points' scatter about the fit
+    iterative_stderr: float  # from the points' iterative (window) uncertainty; NaN for old records
     nonlinear: float
     offset: float
     single_point: float
@@ -68,19 +70,21 @@ class DerivativeRow:
 
 @dataclass
 class SweepFit:
-    """One derivative's sweep: motion variable x, axial ratio u', coefficient y, and the fitted estimator."""
+    """One derivative's sweep: motion variable x, axial ratio u', coefficient y (with its window standard
+    deviation, NaN where a record predates it), and the fitted estimator."""
 
     xs: np.ndarray
     us: np.ndarray
     ys: np.ndarray
     fit: DerivativeFit
+    y_std: np.ndarray | None = None
 
 
 def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = True) -> dict[str, SweepFit]:
     """Fit every derivative whose sweep has enough points. ``results`` are condition result records."""
     fits = {}
     for name, (sweep, coefficient, _) in DEFINITIONS.items():
-        xs, us, ys = [], [], []
+        xs, us, ys, stds = [], [], [], []
         for record in results:
             condition = Condition(**record["condition"])
             if not _on_sweep(condition, sweep):
@@ -89,10 +93,13 @@ def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = T
             xs.append(x)
             us.append(u)
             ys.append(record["coefficients"][coefficient])
-        xs, us, ys = map(np.asarray, (xs, us, ys))
+            window_std = record.get("window_std")
+            stds.append(window_std[COEFFICIENT_NAMES.index(coefficient)] if window_std else np.nan)
+        xs, us, ys, stds = map(np.asarray, (xs, us, ys, stds))
         if len(np.unique(np.abs(xs[xs != 0]))) < 2:
             continue  # this sweep was not run (or has too few magnitudes for a slope and a nonlinear term)
-        fits[name] = SweepFit(xs, us, ys, DerivativeFit(nonlinear=nonlinear, fit_offset=fit_offset).fit(xs, ys))
+        estimator = DerivativeFit(nonlinear=nonlinear, fit_offset=fit_offset).fit(xs, ys, y_std=stds)
+        fits[name] = SweepFit(xs, us, ys, estimator, stds)
     return fits
 
 
@@ -120,6 +127,7 @@ def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> l
                 name=name,
                 value=fit.slope_,
                 stderr=fit.slope_stderr_,
+                iterative_stderr=fit.slope_iterative_stderr_,
                 nonlinear=fit.nonlinear_,
                 offset=fit.offset_,
                 single_point=single,
@@ -136,7 +144,9 @@ def write_table(rows: list[DerivativeRow], json_path: str | Path, meta: dict) ->
     """JSON (keys Yv, Nv, ... in prime units, plus details) and CSV beside it, both atomic."""
     json_path = Path(json_path)
     payload = {row.name: row.value for row in rows}
-    payload["details"] = {row.name: row.__dict__ for row in rows}
+    # NaN (no spare points, or records without a window deviation) is written as null: JSON has no NaN
+    payload["details"] = {row.name: {k: None if isinstance(v, float) and np.isnan(v) else v for k, v in row.__dict__.items()}
+                          for row in rows}
     payload["meta"] = meta
     atomic_write_text(json_path, json.dumps(payload, indent=2) + "\n")
     buffer = io.StringIO()
