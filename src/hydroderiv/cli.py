@@ -18,7 +18,9 @@ from .geometry.suboff import CONFIGURATION_TITLES
 from .mesh import LEVELS, build_mesh
 from .run.monitor import ConvergenceCriterion
 
-console = Console()
+# Redirected to a log file, rich would wrap at 80 columns: progress lines and tables would break in the
+# middle. A terminal keeps its own width.
+console = Console(width=None if sys.stdout.isatty() else 160)
 
 
 def _print_body(body: Body, written: tuple[Path, ...] = ()) -> None:
@@ -162,7 +164,7 @@ def _derivatives(args: argparse.Namespace) -> int:
     out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": study.body or str(study.body_dir),
             "conditions": len(results)}
-    paths = write_table(rows, out, meta)
+    paths = write_table(rows, out, meta, results)
     reference = DERIVATIVES.get(study.body or "", {}).get("values")
     plot = plot_fits(fits, out.with_suffix(".png"), f"{study.body or study.body_dir}, {study.level} mesh", reference)
     console.print(f"written: {paths[0]}, {paths[1]}, {plot}")

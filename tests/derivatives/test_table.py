@@ -39,8 +39,11 @@ def test_fits_each_sweep_and_compares_with_the_experiment(tmp_path):
     # the single-point definition Y'/(u'v') is exact for a purely linear force
     assert rows["Nv"].single_point == pytest.approx(-0.0135, rel=1e-9)
     assert rows["Nv"].experimental_uncertainty_pct == 5 and rows["Nr"].experimental_uncertainty_pct == 10
-    json_path, csv_path = write_table(list(rows.values()), tmp_path / "d.json", {"level": "x"})
+    results = synthetic_results()
+    json_path, csv_path = write_table(list(rows.values()), tmp_path / "d.json", {"level": "x"}, results)
     data = json.loads(json_path.read_text())
+    assert len(data["conditions"]) == len(results)  # the points behind the fits travel with the table
+    assert data["conditions"][0]["coefficients"] == results[0]["coefficients"]
     assert data["Yr"] == rows["Yr"].value and "Yr" in csv_path.read_text()
     assert data["details"]["Yr"]["iterative_stderr"] is None  # records without a window deviation: null, not NaN
 

@@ -64,6 +64,9 @@ class MeshDesign:
     coarse_base_cell_L: float = 0.235  # base (blockMesh) cell of the coarse level, in L
     hull_surface_level: int = 5
     appendage_extra_level: int = 1  # sail and appendages are thin: finer surface cells there
+    # extra levels on the sail and appendages where the surface turns by more than resolveFeatureAngle within
+    # a cell: their rounded leading edges (radius ~1.1 t^2/c, about one surface cell) and tip caps
+    thin_curvature_levels: int = 0
     sphere_surface_level: int = 2
     sphere_inside_level: int = 1
     yplus_target: float = 50.0

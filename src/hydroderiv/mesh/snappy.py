@@ -123,7 +123,11 @@ def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> Non
     region_levels = {c: (hull_level if c == "hull" else fine_level) for c in components}
     layers = d.layers()
     location = _vec(d.location_in_mesh())
-    regions = {c: {"level": [lv, lv], "patchInfo": {"type": "wall", "inGroups": [WALL_GROUP]}} for c, lv in region_levels.items()}
+    regions = {
+        c: {"level": [lv, lv + (d.thin_curvature_levels if c != "hull" else 0)],
+            "patchInfo": {"type": "wall", "inGroups": [WALL_GROUP]}}
+        for c, lv in region_levels.items()
+    }
     geometry = {
         f"{SURFACE}.stl": {"type": "triSurfaceMesh", "name": SURFACE, "regions": {c: {"name": c} for c in components}},
         ROTATING_ZONE: {"type": "searchableSphere", "centre": [0, 0, 0], "radius": d.sphere_radius},
