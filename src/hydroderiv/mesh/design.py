@@ -67,6 +67,9 @@ class MeshDesign:
     # extra levels on the sail and appendages where the surface turns by more than resolveFeatureAngle within
     # a cell: their rounded leading edges (radius ~1.1 t^2/c, about one surface cell) and tip caps
     thin_curvature_levels: int = 0
+    # at most this many prism layers on the sail and appendages: the hull's full stack (about 20 mm) is more
+    # than half the sail's half-thickness, and snappy then shrinks or drops the layers near the thin edges
+    thin_max_layers: int = 8
     sphere_surface_level: int = 2
     sphere_inside_level: int = 1
     yplus_target: float = 50.0

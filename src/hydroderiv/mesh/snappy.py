@@ -185,7 +185,10 @@ def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> Non
                 "firstLayerThickness": round(layers.first_thickness, 7),
                 "expansionRatio": layers.expansion,
                 "minThickness": round(0.25 * layers.total_thickness, 6),
-                "layers": {c: {"nSurfaceLayers": layers.count} for c in components},
+                "layers": {
+                    c: {"nSurfaceLayers": layers.count if c == "hull" else min(layers.count, d.thin_max_layers)}
+                    for c in components
+                },
                 "nGrow": 0,
                 "featureAngle": 180,
                 "slipFeatureAngle": 30,
