@@ -147,7 +147,7 @@ def _derivatives(args: argparse.Namespace) -> int:
 
     study = Study.load(args.file)
     results = [r for c in study.conditions if (r := read_result(study.case_dir(c)))]
-    fits = fit_sweeps(results)  # once: the table and the plot show the same fits
+    fits = fit_sweeps(results, study.nonlinear, study.fit_offset)  # once: the table and the plot show the same fits
     rows = table_rows(fits, reference_key=study.body)
     if not rows:
         raise HydroderivError(f"no sweep of {study.path} has enough finished conditions for a derivative yet")
@@ -163,7 +163,7 @@ def _derivatives(args: argparse.Namespace) -> int:
     console.print(table)
     out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": study.body or str(study.body_dir),
-            "conditions": len(results)}
+            "conditions": len(results), "fit": {"nonlinear": study.nonlinear, "offset": study.fit_offset}}
     paths = write_table(rows, out, meta, results)
     reference = DERIVATIVES.get(study.body or "", {}).get("values")
     plot = plot_fits(fits, out.with_suffix(".png"), f"{study.body or study.body_dir}, {study.level} mesh", reference)

@@ -72,3 +72,16 @@ def test_the_fit_plot_is_written(tmp_path):
     fits = fit_sweeps(synthetic_results())
     path = plot_fits(fits, tmp_path / "fits.png", "synthetic", {"Yv": -0.0278})
     assert path.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and path.stat().st_size > 10_000
+
+
+def test_a_linear_fit_needs_only_one_point_each_side():
+    def quick(condition):  # straight, drift +-4 and turns r' = +-0.1, as in the quick study
+        beta, r = abs(condition["drift_deg"]), abs(condition["yaw_rate_prime"])
+        return (beta, r) in ((0, 0), (4, 0), (0, 0.1))
+
+    results = [r for r in synthetic_results() if quick(r["condition"])]
+    assert len(results) == 5
+    assert not derivative_table(results)  # one magnitude cannot carry a nonlinear term as well
+    rows = {r.name: r for r in derivative_table(results, nonlinear="none")}
+    assert set(rows) == {"Yv", "Nv", "Yr", "Nr"}
+    assert rows["Yr"].value == pytest.approx(0.00325, rel=1e-6) and rows["Nr"].value == pytest.approx(-0.00372, rel=0.05)

@@ -42,6 +42,12 @@ def test_a_study_lists_straight_ahead_sweeps_and_extras(tmp_path):
     assert all(s["left"] for s in [study.status()]) and len(study.status()["left"]) == 7
 
 
+def test_the_fit_model_is_read_from_the_study_file(tmp_path):
+    assert (Study.load(write(tmp_path, GOOD)).nonlinear, Study.load(write(tmp_path, GOOD)).fit_offset) == ("abs", True)
+    study = Study.load(write(tmp_path, GOOD + '\n[fit]\nnonlinear = "none"\noffset = false\n'))
+    assert study.nonlinear == "none" and study.fit_offset is False
+
+
 def test_run_order_starts_straight_and_moves_outward():
     cs = (Condition(3, drift_deg=8), Condition(3), Condition(3, drift_deg=-4), Condition(3, yaw_rate_prime=0.3))
     order = run_order(cs)
@@ -59,6 +65,8 @@ def test_run_order_starts_straight_and_moves_outward():
         (GOOD.replace("rel_tol", "tolerance"), "unknown convergence keys"),
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nmethod = "rotating"'), "unknown method 'rotating'"),
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nspeed_kn = 6'), r"unknown \[study\] key\(s\) speed_kn"),
+        (GOOD + '\n[fit]\nnonlinear = "quadratic"\n', "unknown nonlinear term 'quadratic'"),
+        (GOOD + "\n[fit]\nslope_only = true\n", r"unknown \[fit\] keys slope_only"),
         ("[study\nbody=", "not valid TOML"),
     ],
 )

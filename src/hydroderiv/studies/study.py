@@ -22,6 +22,10 @@ Example::
 
     [convergence]             # optional, see ConvergenceCriterion
     rel_tol = 0.005
+
+    [fit]                     # optional, see DerivativeFit
+    nonlinear = "abs"         # "abs" (Gertler-Hagen v|v|, default), "cubic" or "none" (one point each side)
+    offset = true             # fit a constant too (default): absorbs an asymmetry such as the sail's
 """
 
 from __future__ import annotations
@@ -41,6 +45,7 @@ from ..case import KNOT, Condition
 from ..case.conditions import SWEEP_KEYS
 from ..case.frames import FRAME_METHODS
 from ..case.setup import CaseSettings, latest_time_dir
+from ..derivatives.fit import NONLINEAR_TERMS
 from ..errors import ConfigurationError, HydroderivError
 from ..geometry import Body
 from ..run.condition import read_result, run_condition
@@ -70,6 +75,8 @@ class Study:
     conditions: tuple[Condition, ...]
     criterion: ConvergenceCriterion = field(default_factory=ConvergenceCriterion)
     method: str = "hybrid"
+    nonlinear: str = "abs"  # the derivative fit's nonlinear term
+    fit_offset: bool = True
 
     @classmethod
     def load(cls, path: str | Path) -> Study:
@@ -81,7 +88,7 @@ class Study:
         except tomllib.TOMLDecodeError as error:
             raise ConfigurationError(f"{path}: not valid TOML: {error}")
         head = data.get("study", {})
-        unknown = set(data) - {"study", "sweeps", "conditions", "convergence"}
+        unknown = set(data) - {"study", "sweeps", "conditions", "convergence", "fit"}
         if unknown:
             raise ConfigurationError(f"{path}: unknown section(s) {', '.join(sorted(unknown))}")
         body, body_dir = head.get("body"), head.get("body_dir")
@@ -113,6 +120,12 @@ class Study:
         conv = data.get("convergence", {})
         if set(conv) - allowed:
             raise ConfigurationError(f"{path}: unknown convergence keys {', '.join(sorted(set(conv) - allowed))}")
+        fit = data.get("fit", {})
+        if set(fit) - {"nonlinear", "offset"}:
+            raise ConfigurationError(f"{path}: unknown [fit] keys {', '.join(sorted(set(fit) - {'nonlinear', 'offset'}))}")
+        nonlinear = fit.get("nonlinear", "abs")
+        if nonlinear not in NONLINEAR_TERMS:
+            raise ConfigurationError(f"{path}: unknown nonlinear term {nonlinear!r}; choose one of {', '.join(NONLINEAR_TERMS)}")
         return cls(
             path=path,
             body=body.upper() if body else None,
@@ -124,6 +137,8 @@ class Study:
             conditions=unique,
             criterion=ConvergenceCriterion(**conv),
             method=method,
+            nonlinear=nonlinear,
+            fit_offset=bool(fit.get("offset", True)),
         )
 
     @property
