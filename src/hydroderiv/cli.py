@@ -20,7 +20,7 @@ from .run.monitor import ConvergenceCriterion
 
 # Redirected to a log file, rich would wrap at 80 columns: progress lines and tables would break in the
 # middle. A terminal keeps its own width.
-console = Console(width=None if sys.stdout.isatty() else 160)
+console = Console(width=None if sys.stdout.isatty() else 200)
 
 
 def _print_body(body: Body, written: tuple[Path, ...] = ()) -> None:
