@@ -37,6 +37,11 @@ class DerivativeFit:
         self.nonlinear = nonlinear
         self.fit_offset = fit_offset
 
+    @property
+    def magnitudes_needed(self) -> int:
+        """Distinct non-zero |x| the odd terms need: one for the slope, one more for a nonlinear term."""
+        return 1 if NONLINEAR_TERMS.get(self.nonlinear) is None else 2
+
     def _design(self, x: np.ndarray) -> np.ndarray:
         if self.nonlinear not in NONLINEAR_TERMS:
             raise ConfigurationError(f"unknown nonlinear term {self.nonlinear!r}; choose one of {', '.join(NONLINEAR_TERMS)}")
@@ -52,7 +57,7 @@ class DerivativeFit:
         x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
         design = self._design(x)
         n, p = design.shape
-        if n < p or len(np.unique(np.abs(x[x != 0]))) < p - int(self.fit_offset):
+        if n < p or len(np.unique(np.abs(x[x != 0]))) < self.magnitudes_needed:
             raise ConfigurationError(
                 f"{n} points at {len(np.unique(np.abs(x)))} distinct magnitudes cannot determine {p} terms; "
                 "add conditions to the sweep"

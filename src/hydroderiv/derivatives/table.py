@@ -26,7 +26,7 @@ from ..case import Condition
 from ..case.conditions import SWEEP_KEYS
 from ..experiments import DERIVATIVES, DERIVATIVE_UNCERTAINTY
 from ..forces import COEFFICIENT_NAMES
-from .fit import NONLINEAR_TERMS, DerivativeFit
+from .fit import DerivativeFit
 
 # derivative -> (sweep variable of Condition, force coefficient, static or rotary)
 DEFINITIONS = {
@@ -96,10 +96,10 @@ def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = T
             window_std = record.get("window_std")
             stds.append(window_std[COEFFICIENT_NAMES.index(coefficient)] if window_std else np.nan)
         xs, us, ys, stds = map(np.asarray, (xs, us, ys, stds))
-        odd_terms = 1 if NONLINEAR_TERMS.get(nonlinear) is None else 2
-        if len(np.unique(np.abs(xs[xs != 0]))) < odd_terms:
+        estimator = DerivativeFit(nonlinear=nonlinear, fit_offset=fit_offset)
+        if len(np.unique(np.abs(xs[xs != 0]))) < estimator.magnitudes_needed:
             continue  # this sweep was not run (or has too few magnitudes for a slope and a nonlinear term)
-        estimator = DerivativeFit(nonlinear=nonlinear, fit_offset=fit_offset).fit(xs, ys, y_std=stds)
+        estimator.fit(xs, ys, y_std=stds)
         fits[name] = SweepFit(xs, us, ys, estimator, stds)
     return fits
 

@@ -81,6 +81,7 @@ def run_condition(
         for processor in case.glob("processor*"):
             shutil.rmtree(processor)
     force_scale, moment_scale = scales.force, scales.moment
+    window = result.history[-criterion.window :]  # the iterations the result is the mean of
     record = {
         "condition": asdict(condition),
         "name": condition.name,
@@ -98,8 +99,8 @@ def run_condition(
         },
         # peak-to-peak and standard deviation of each coefficient over the averaging window: the iterative
         # uncertainty of the mean above
-        "window_spread": np.ptp(result.history[-criterion.window :], axis=0).tolist(),
-        "window_std": np.std(result.history[-criterion.window :], axis=0).tolist(),
+        "window_spread": np.ptp(window, axis=0).tolist(),
+        "window_std": np.std(window, axis=0).tolist(),
         "yplus": _yplus_summary(case),
         "reference": {"rho": settings.fluid.rho, "speed": condition.speed, "length": settings.length},
         "openfoam_version": openfoam_version_from_log((case / "log.simpleFoam").read_text(errors="replace")),
