@@ -2,6 +2,7 @@
 
 import dataclasses
 
+import pytest
 from foamlib import FoamFile
 
 from hydroderiv import suboff_body
@@ -35,3 +36,14 @@ def test_thin_parts_can_take_fewer_prism_layers_than_the_hull(tmp_path):
     layers = _snappy_dict(tmp_path, design)["addLayersControls"]["layers"]
     assert layers["hull"]["nSurfaceLayers"] == design.layers().count == 8
     assert layers["sail"]["nSurfaceLayers"] == layers["appendage_port"]["nSurfaceLayers"] == 5
+
+
+def test_each_part_drops_its_layers_below_a_quarter_of_its_own_stack(tmp_path):
+    design = dataclasses.replace(MeshDesign("coarse", 4.261, 0.476, -2.343, 2.013), thin_max_layers=4)
+    controls = _snappy_dict(tmp_path, design)["addLayersControls"]
+    hull, sail = design.layers_of("hull"), design.layers_of("sail")
+    assert sail.first_thickness == hull.first_thickness and sail.count == 4
+    assert controls["layers"]["hull"]["minThickness"] == pytest.approx(0.25 * hull.total_thickness, abs=1e-6)
+    assert controls["layers"]["sail"]["minThickness"] == pytest.approx(0.25 * sail.total_thickness, abs=1e-6)
+    # with the hull's absolute minimum, a 4-layer stack would lose its layers wherever it shrank by a third
+    assert controls["layers"]["sail"]["minThickness"] < 0.4 * controls["minThickness"]

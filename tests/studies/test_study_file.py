@@ -102,3 +102,40 @@ def test_a_classic_study_shares_the_straight_runs_and_keeps_its_turns_apart(tmp_
 def test_every_committed_study_file_loads(path):
     study = Study.load(path)
     assert study.conditions[0] == Condition(study.speed) and len(study.conditions) > 1
+
+
+def test_a_retried_condition_warm_starts_from_conditions_finished_by_an_earlier_run(tmp_path, monkeypatch):
+    """The solver is replaced by a stand-in that writes a result: this checks the study's bookkeeping."""
+    import json
+
+    import hydroderiv.studies.study as study_module
+    from hydroderiv.run.solver import SolverDivergedError
+
+    study = Study.load(write(tmp_path, GOOD))
+    monkeypatch.setattr(study_module.Workspace, "body", lambda self, *a, **k: None)
+    monkeypatch.setattr(study_module.Workspace, "mesh", lambda self, *a, **k: {})
+    monkeypatch.setattr(study_module.Study, "case_settings", lambda self, body: None)
+    starts, failing = {}, {Condition(study.speed).name}
+
+    def stand_in(case, mesh, condition, settings, criterion, warm_start=None, on_progress=None):
+        starts[condition.name] = warm_start
+        if condition.name in failing:
+            raise SolverDivergedError(f"{condition.name} diverged")
+        (case / "100").mkdir()
+        (case / "100/U").write_text("solution")
+        result = {"converged": True, "iterations": 100, "wall_seconds": 1.0}
+        (case / "result.json").write_text(json.dumps(result))
+        return result
+
+    monkeypatch.setattr(study_module, "run_condition", stand_in)
+    straight = Condition(study.speed).name
+    study_module.run_study(study, log=lambda m: None)
+    assert starts[straight] is None  # nothing had finished yet: a cold start, and it fails
+    assert study.status()["failed"] == [straight]
+
+    failing.clear()
+    starts.clear()
+    study_module.run_study(study, log=lambda m: None)
+    assert list(starts) == [straight]  # finished conditions are read back, not rerun
+    # retried from the nearest finished condition (drift -4 or +4 deg), not from rest
+    assert starts[straight] is not None and starts[straight].parent.name in ("U3.34389_b-4_a0_r0_q0", "U3.34389_b+4_a0_r0_q0")

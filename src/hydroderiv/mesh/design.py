@@ -8,6 +8,7 @@ systematic family for a grid-convergence study; all refinement levels are relati
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from dataclasses import dataclass
 
@@ -108,6 +109,7 @@ class MeshDesign:
         return self.cell_at(self.hull_surface_level)
 
     def layers(self) -> LayerDesign:
+        """The hull's prism layers: the first cell sized for y+, growing to a fraction of the surface cell."""
         u_tau = friction_velocity(self.design_speed, self.length, self.nu)
         first = 2.0 * self.yplus_target * self.nu / u_tau
         wanted_final = self.final_layer_fraction * self.hull_cell
@@ -116,7 +118,27 @@ class MeshDesign:
         count = max(self.min_layers, min(self.max_layers, count))
         return LayerDesign(first, e, count, self.yplus_target)
 
+    def layers_of(self, component: str) -> LayerDesign:
+        """The prism layers of one body part: the hull's, with at most ``thin_max_layers`` on a thin part."""
+        hull = self.layers()
+        if not is_thin_part(component):
+            return hull
+        return dataclasses.replace(hull, count=min(hull.count, self.thin_max_layers))
+
+    def min_layer_thickness(self, component: str) -> float:
+        """Below this total thickness snappy drops a part's layers: a quarter of that part's own stack.
+
+        One absolute value for every patch would be a quarter of the hull's stack, which on a thin part with
+        fewer layers may be most of its whole stack, so its layers would be dropped wherever they shrink.
+        """
+        return 0.25 * self.layers_of(component).total_thickness
+
     def location_in_mesh(self) -> tuple[float, float, float]:
         """A point in the fluid, outside the sphere and off every cell face (snappy needs one)."""
         r = 0.5 * (self.sphere_radius + self.half_width)
         return (r + 0.0123, 0.0137, 0.0171)
+
+
+def is_thin_part(component: str) -> bool:
+    """The sail and the appendages are thin lifting parts; everything about them differs from the hull's."""
+    return component != "hull"

@@ -58,19 +58,24 @@ def _boundary_list(path: Path, patch: str) -> np.ndarray:
     return np.array([float(uniform.group(1))]) if uniform else np.empty(0)
 
 
-def layer_coverage(case: Path, patches: tuple[str, ...], layers_wanted: int) -> dict:
-    """Per patch: faces, % with any prism layer, % with all layers, mean layers (from snappy's layer field)."""
+def layer_coverage(case: Path, layers_wanted: dict[str, int]) -> dict:
+    """Per patch: faces, % with any prism layer, % with all of that patch's layers, mean layers.
+
+    ``layers_wanted`` maps each patch to the layer count asked of it (thin parts may ask fewer than the
+    hull). Read from snappy's layer field.
+    """
     field = Path(case) / "0" / "nSurfaceLayers"
     out = {}
     if not field.is_file():
         return out
-    for patch in patches:
+    for patch, wanted in layers_wanted.items():
         n = _boundary_list(field, patch)
         if len(n):
             out[patch] = {
                 "faces": int(len(n)),
                 "any_layer_pct": round(100.0 * float((n > 0).mean()), 1),
-                "all_layers_pct": round(100.0 * float((n >= layers_wanted).mean()), 1),
+                "layers_wanted": wanted,
+                "all_layers_pct": round(100.0 * float((n >= wanted).mean()), 1),
                 "mean_layers": round(float(n.mean()), 2),
             }
     return out

@@ -19,7 +19,7 @@ from .._foam import quoted, write_foam_dict
 from .._io import atomic_write_text
 from ..geometry import Body
 from ..run.openfoam import run_application
-from .design import REFINEMENT_RATIO, MeshDesign
+from .design import REFINEMENT_RATIO, MeshDesign, is_thin_part
 from .quality import MeshQualityError, layer_coverage, parse_check_mesh, sphere_interface_spread
 
 FARFIELD = "farfield"
@@ -120,11 +120,11 @@ def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> Non
     boxes = _refinement_boxes(d)
     hull_level = d.hull_surface_level
     fine_level = hull_level + d.appendage_extra_level
-    region_levels = {c: (hull_level if c == "hull" else fine_level) for c in components}
+    region_levels = {c: (fine_level if is_thin_part(c) else hull_level) for c in components}
     layers = d.layers()
     location = _vec(d.location_in_mesh())
     regions = {
-        c: {"level": [lv, lv + (d.thin_curvature_levels if c != "hull" else 0)],
+        c: {"level": [lv, lv + (d.thin_curvature_levels if is_thin_part(c) else 0)],
             "patchInfo": {"type": "wall", "inGroups": [WALL_GROUP]}}
         for c, lv in region_levels.items()
     }
@@ -184,9 +184,9 @@ def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> Non
                 "relativeSizes": False,  # absolute first-layer thickness, sized for y+
                 "firstLayerThickness": round(layers.first_thickness, 7),
                 "expansionRatio": layers.expansion,
-                "minThickness": round(0.25 * layers.total_thickness, 6),
+                "minThickness": round(d.min_layer_thickness("hull"), 6),
                 "layers": {
-                    c: {"nSurfaceLayers": layers.count if c == "hull" else min(layers.count, d.thin_max_layers)}
+                    c: {"nSurfaceLayers": d.layers_of(c).count, "minThickness": round(d.min_layer_thickness(c), 6)}
                     for c in components
                 },
                 "nGrow": 0,
@@ -360,7 +360,7 @@ def build_mesh(
         "hull_surface_cell_m": design.hull_cell,
         "refinement_ratio": REFINEMENT_RATIO,
         "layers": {**asdict(layers), "total_thickness": layers.total_thickness},
-        "layer_coverage": layer_coverage(case, body.component_names, layers.count),
+        "layer_coverage": layer_coverage(case, {c: design.layers_of(c).count for c in body.component_names}),
         "design_yplus": {
             "speed_m_s": design_speed,
             "first_cell_centre": round(layers.yplus_target, 1),

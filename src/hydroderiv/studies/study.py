@@ -216,9 +216,14 @@ def run_study(
     body = ws.body(study.body, study.body_dir)
     ws.mesh(body, log=log)
     settings = study.case_settings(body)
-    finished: dict[Path, Condition] = {}  # warm-start candidates
-    results: dict[str, dict] = {}
     order = run_order(study.conditions)
+    # Warm-start candidates: every condition already finished, by an earlier run of this study too, so a
+    # resumed or retried condition starts from its nearest neighbour even when that one comes later in
+    # the run order (a straight run that failed is retried from a finished drift, not from rest).
+    finished: dict[Path, Condition] = {
+        study.case_dir(c): c for c in order if _warm_start_candidate(study, c) and read_result(study.case_dir(c))
+    }
+    results: dict[str, dict] = {}
     for number, condition in enumerate(order, start=1):
         case = study.case_dir(condition)
         done = read_result(case)
@@ -240,9 +245,13 @@ def run_study(
             log(f"    {'converged' if done['converged'] else 'NOT converged'} in {done['iterations']} iterations, {done['wall_seconds']:.0f} s")
         else:
             log(f"[{number}/{len(order)}] {condition.name}: done")
-        # A classic turn starts from fluid at rest far away; the straight runs it shares hold the hybrid
-        # inflow field, which would be a worse start than none.
-        if study.method == "hybrid" or condition.is_turning:
+        if _warm_start_candidate(study, condition):
             finished[case] = condition
         results[condition.name] = done
     return results
+
+
+def _warm_start_candidate(study: Study, condition: Condition) -> bool:
+    # A classic turn starts from fluid at rest far away; the straight runs it shares hold the hybrid
+    # inflow field, which would be a worse start than none.
+    return study.method == "hybrid" or condition.is_turning
