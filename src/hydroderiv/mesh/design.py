@@ -64,13 +64,18 @@ class MeshDesign:
     sphere_radius_L: float = 2.0
     coarse_base_cell_L: float = 0.235  # base (blockMesh) cell of the coarse level, in L
     hull_surface_level: int = 5
-    appendage_extra_level: int = 1  # sail and appendages are thin: finer surface cells there
+    # Sail and appendages are thin lifting parts: surface cells two levels finer than the hull's (8 mm on
+    # the coarse mesh, about 45 along the sail's chord and 5 across a stern appendage). With one level the
+    # sail's flow separated from mid-chord: it gave side force at zero drift (AFF-8 medium, 1.6e-4) and
+    # about half its lift at drift (runs of 2026-11-22, recorded in the issue-4 notes).
+    appendage_extra_level: int = 2
     # extra levels on the sail and appendages where the surface turns by more than resolveFeatureAngle within
     # a cell: their rounded leading edges (radius ~1.1 t^2/c, about one surface cell) and tip caps
     thin_curvature_levels: int = 0
     # at most this many prism layers on the sail and appendages: the hull's full stack (about 20 mm) is more
-    # than half the sail's half-thickness, and snappy then shrinks or drops the layers near the thin edges
-    thin_max_layers: int = 8
+    # than half the sail's half-thickness, and snappy then shrinks or drops the layers near the thin edges.
+    # Four layers (5 mm) with their own minimum thickness survive on 75 % of the sail's faces.
+    thin_max_layers: int = 4
     sphere_surface_level: int = 2
     sphere_inside_level: int = 1
     yplus_target: float = 50.0
