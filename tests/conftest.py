@@ -27,9 +27,10 @@ def openfoam():
 
 @pytest.fixture(scope="session")
 def coarse_bare_hull(tmp_path_factory, suboff, openfoam):
-    """The coarse single mesh of the bare hull (AFF-1), built once for all OpenFOAM tests."""
+    """The coarse single mesh of the bare hull (AFF-1), built once for all OpenFOAM tests, with snappyHexMesh
+    on 2 MPI ranks as studies build theirs."""
     from hydroderiv.mesh import build_mesh
 
     case = tmp_path_factory.mktemp("mesh") / "AFF-1-coarse"
-    report = build_mesh(suboff("AFF-1"), "coarse", case, log=lambda message: None)
+    report = build_mesh(suboff("AFF-1"), "coarse", case, log=lambda message: None, n_procs=2)
     return case, report

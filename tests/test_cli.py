@@ -34,6 +34,14 @@ def test_unknown_configuration_is_named(tmp_path, capsys):
     assert "unknown SUBOFF configuration 'AFF-5'" in capsys.readouterr().out
 
 
+def test_a_bad_mesh_option_is_named_before_anything_runs(tmp_path, capsys):
+    assert main(["mesh", "--config", "AFF-8", "--out", str(tmp_path / "m"), "--mesh", "appendage_levels=2"]) == 2
+    assert "unknown mesh option 'appendage_levels'" in capsys.readouterr().out
+    assert main(["mesh", "--config", "AFF-8", "--out", str(tmp_path / "m"), "--mesh", "thin_max_layers"]) == 2
+    assert "expected KEY=VALUE" in capsys.readouterr().out
+    assert not (tmp_path / "m").exists()
+
+
 def test_progress_shows_each_condition_from_its_own_first_iteration(capsys):
     """A study's second condition counts iterations from 0 again; its progress must not wait for the first's count."""
     import numpy as np

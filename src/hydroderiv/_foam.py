@@ -53,3 +53,12 @@ def write_foam_dict(path: str | Path, content: dict[str, Any], foam_class: str =
 
 def quoted(text: str) -> str:
     return f'"{text}"'
+
+
+def write_decomposition(case: str | Path, n_procs: int) -> Path:
+    """system/decomposeParDict for ``n_procs`` slabs along x. Hierarchical because scotch and metis may be
+    stubs in a packaged OpenFOAM (Debian's is)."""
+    return write_foam_dict(
+        Path(case) / "system/decomposeParDict",
+        {"numberOfSubdomains": n_procs, "method": "hierarchical", "coeffs": {"n": [n_procs, 1, 1], "order": "xyz"}},
+    )

@@ -11,11 +11,12 @@ from typing import Callable
 from rich.console import Console
 from rich.table import Table
 
-from .errors import HydroderivError
+from .errors import ConfigurationError, HydroderivError
 from .experiments import RESISTANCE
 from .geometry import CONFIGURATIONS, Body, load_user_body, suboff_body
 from .geometry.suboff import CONFIGURATION_TITLES
 from .mesh import LEVELS, build_mesh
+from .mesh.design import mesh_options
 from .run.monitor import ConvergenceCriterion
 
 # Redirected to a log file, rich would wrap at 80 columns: progress lines and tables would break in the
@@ -73,9 +74,21 @@ def _progress_printer(label: Callable[[object], str], every: int = 25):
     return show
 
 
+def _mesh_options(args: argparse.Namespace) -> dict[str, int | float]:
+    """The --mesh KEY=VALUE options, checked (an unknown key or a bad value is named)."""
+    pairs = {}
+    for item in args.mesh:
+        key, sep, value = item.partition("=")
+        if not sep:
+            raise ConfigurationError(f"--mesh {item!r}: expected KEY=VALUE, e.g. --mesh thin_max_layers=4")
+        pairs[key.strip()] = value.strip()
+    return mesh_options(pairs, "--mesh")
+
+
 def _mesh(args: argparse.Namespace) -> int:
     body = Body.read(args.body) if args.body else suboff_body(args.config)
-    report = build_mesh(body, args.level, args.out, design_speed=args.design_speed, log=console.print)
+    report = build_mesh(body, args.level, args.out, design_speed=args.design_speed, log=console.print,
+                        options=_mesh_options(args), n_procs=args.np)
     table = Table(title=f"mesh {args.out} ({body.name}, {args.level})", show_header=False)
     for key in ("cells", "meshing_seconds", "base_cell_m", "hull_surface_cell_m", "refinement_ratio"):
         table.add_row(key, str(report[key]))
@@ -103,7 +116,7 @@ def _resistance(args: argparse.Namespace) -> int:
     points = run_resistance(
         args.work, args.level, speeds, config=config, body_dir=args.body, n_procs=args.np, criterion=criterion,
         results_path=results, log=console.print,
-        on_progress=_progress_printer(lambda knots: f"{knots:5.2f} kn"),
+        on_progress=_progress_printer(lambda knots: f"{knots:5.2f} kn"), mesh_options=_mesh_options(args),
     )
     title = f"{points[0]['body']} resistance, {args.level} mesh ({points[0]['cells']} cells)"
     console.print(resistance_table(points, title))
@@ -198,11 +211,14 @@ def build_parser() -> argparse.ArgumentParser:
         step.add_argument("--config", default="AFF-8", help="SUBOFF configuration (ignored with --body)")
         step.add_argument("--body", help="a body directory written by `hydroderiv geometry` instead of SUBOFF")
         step.add_argument("--level", default="coarse", choices=LEVELS)
+        step.add_argument("--mesh", action="append", default=[], metavar="KEY=VALUE",
+                          help="a meshing option (a MeshDesign field), e.g. --mesh appendage_extra_level=1; repeatable")
 
     mesh = steps.add_parser("mesh", help="build the single mesh of a body (every condition runs on it)")
     add_body_and_level(mesh)
     mesh.add_argument("--design-speed", type=float, default=3.344, help="speed the prism layers are sized for, m/s")
     mesh.add_argument("--out", required=True, help="mesh case directory")
+    mesh.add_argument("--np", type=int, default=2, help="MPI ranks for snappyHexMesh (default 2)")
     mesh.set_defaults(func=_mesh)
 
     res = steps.add_parser("resistance", help="straight-ahead resistance against speed on one mesh, with the experiment")

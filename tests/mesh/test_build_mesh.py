@@ -42,6 +42,13 @@ def test_rotating_zone_is_a_snapped_sphere_not_a_staircase(coarse_bare_hull):
     assert "rotatingZone" in (case / "constant/polyMesh/cellZones").read_text()
 
 
+def test_a_parallel_mesh_is_merged_back_whole(coarse_bare_hull):
+    case, report = coarse_bare_hull
+    assert {"snappyHexMesh", "reconstructParMesh", "reconstructPar"} <= set(report["timings"])
+    assert not list(case.glob("processor*"))
+    assert (case / "constant/polyMesh/cellZones").is_file() and report["layer_coverage"]["hull"]["faces"] > 1000
+
+
 def test_prism_layers_cover_most_of_the_hull(coarse_bare_hull):
     _, report = coarse_bare_hull
     cover = report["layer_coverage"]["hull"]

@@ -47,3 +47,36 @@ def test_each_part_drops_its_layers_below_a_quarter_of_its_own_stack(tmp_path):
     assert controls["layers"]["sail"]["minThickness"] == pytest.approx(0.25 * sail.total_thickness, abs=1e-6)
     # with the hull's absolute minimum, a 4-layer stack would lose its layers wherever it shrank by a third
     assert controls["layers"]["sail"]["minThickness"] < 0.4 * controls["minThickness"]
+
+
+def test_mesh_options_are_checked_and_named(tmp_path):
+    from hydroderiv.errors import ConfigurationError
+    from hydroderiv.mesh.design import mesh_options
+
+    assert mesh_options({"appendage_extra_level": "1", "yplus_target": 30}) == {"appendage_extra_level": 1, "yplus_target": 30.0}
+    with pytest.raises(ConfigurationError, match="unknown mesh option 'appendage_levels'"):
+        mesh_options({"appendage_levels": 1})
+    with pytest.raises(ConfigurationError, match="thin_max_layers = 2.5.*whole number"):
+        mesh_options({"thin_max_layers": 2.5})
+    with pytest.raises(ConfigurationError, match="not a number"):
+        mesh_options({"sphere_radius_L": "large"})
+    with pytest.raises(ConfigurationError, match="unknown mesh option 'length'"):
+        mesh_options({"length": 5.0})  # set by the body, not by the user
+
+
+def test_a_mesh_built_to_another_design_is_not_reused_silently(tmp_path):
+    import json
+
+    from hydroderiv.errors import ConfigurationError
+    from hydroderiv.mesh import build_mesh
+    from hydroderiv.mesh.snappy import REPORT_FILE
+
+    body = suboff_body("AFF-8", resolution=0.04)
+    case = tmp_path / "mesh"
+    case.mkdir()
+    # an older mesh: its report keeps the design it was built to
+    (case / REPORT_FILE).write_text(json.dumps({"cells": 1000, "design": {"appendage_extra_level": 1}}))
+    with pytest.raises(ConfigurationError, match=r"appendage_extra_level 1 \(asked 2\)"):
+        build_mesh(body, "coarse", case, log=lambda m: None)
+    reused = build_mesh(body, "coarse", case, log=lambda m: None, options={"appendage_extra_level": 1})
+    assert reused["cells"] == 1000

@@ -46,6 +46,19 @@ def test_forces_stopped_the_run_not_an_iteration_count(straight):
     assert record["openfoam_version"]  # provenance: the release that produced the result
 
 
+def test_a_cold_start_switches_to_second_order_and_converges_on_it(straight):
+    from hydroderiv.case.numerics import has_second_order_convection
+
+    case, record, _, settings = straight
+    assert record["second_order_from"] == settings.first_order_start
+    assert has_second_order_convection(case)
+    log = (case / "log.simpleFoam").read_text()
+    # simpleFoam picked up the rewritten schemes after the first-order iterations
+    assert log.index("Re-reading object fvSchemes") > log.index(f"\nTime = {settings.first_order_start}\n")
+    # the averaging window holds second-order iterations only
+    assert record["iterations"] >= settings.first_order_start + ConvergenceCriterion().window
+
+
 def test_a_finished_condition_is_not_recomputed(straight, coarse_bare_hull):
     case, record, _, settings = straight
     before = (case / RESULT_FILE).stat().st_mtime_ns

@@ -139,3 +139,11 @@ def test_a_retried_condition_warm_starts_from_conditions_finished_by_an_earlier_
     assert list(starts) == [straight]  # finished conditions are read back, not rerun
     # retried from the nearest finished condition (drift -4 or +4 deg), not from rest
     assert starts[straight] is not None and starts[straight].parent.name in ("U3.34389_b-4_a0_r0_q0", "U3.34389_b+4_a0_r0_q0")
+
+
+def test_the_mesh_table_sets_mesh_options_for_every_condition(tmp_path):
+    study = Study.load(write(tmp_path, GOOD + "\n[mesh]\nappendage_extra_level = 1\nthin_max_layers = 8\n"))
+    assert dict(study.mesh_options) == {"appendage_extra_level": 1, "thin_max_layers": 8}
+    assert dict(study.workspace.mesh_options) == dict(study.mesh_options)
+    with pytest.raises(ConfigurationError, match="unknown mesh option 'layers'"):
+        Study.load(write(tmp_path, GOOD + "\n[mesh]\nlayers = 3\n"))

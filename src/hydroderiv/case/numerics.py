@@ -7,9 +7,13 @@ from pathlib import Path
 from .._foam import write_foam_dict
 
 
+SECOND_ORDER = "bounded Gauss linearUpwind grad({})"
+FIRST_ORDER = "bounded Gauss upwind"
+
+
 def write_numerics(case: Path, second_order: bool = True) -> None:
     """fvSchemes and fvSolution. Second-order (bounded linear-upwind) convection for validation runs."""
-    convection = "bounded Gauss linearUpwind grad({})" if second_order else "bounded Gauss upwind"
+    convection = SECOND_ORDER if second_order else FIRST_ORDER
     write_foam_dict(
         Path(case) / "system/fvSchemes",
         {
@@ -44,3 +48,13 @@ def write_numerics(case: Path, second_order: bool = True) -> None:
             "relaxationFactors": {"fields": {"p": 0.3}, "equations": {"U": 0.7, "k": 0.6, "omega": 0.6}},
         },
     )
+
+
+def has_second_order_convection(case: Path) -> bool:
+    """Whether the case's fvSchemes convects momentum with the second-order scheme (an interrupted cold
+    start may still hold its first-order schemes)."""
+    from foamlib import FoamFile
+
+    entry = FoamFile(Path(case) / "system/fvSchemes")["divSchemes"]["div(phi,U)"]
+    words = entry.split() if isinstance(entry, str) else [str(word) for word in entry]
+    return words == SECOND_ORDER.format("U").split()

@@ -11,6 +11,7 @@ from __future__ import annotations
 import dataclasses
 import math
 from dataclasses import dataclass
+from typing import Mapping
 
 from ..errors import ConfigurationError
 
@@ -142,6 +143,31 @@ class MeshDesign:
         """A point in the fluid, outside the sphere and off every cell face (snappy needs one)."""
         r = 0.5 * (self.sphere_radius + self.half_width)
         return (r + 0.0123, 0.0137, 0.0171)
+
+
+# What the body and the speed decide; every other MeshDesign field is a meshing option a user may set.
+_FROM_THE_BODY = ("level", "length", "body_radius", "body_x_min", "body_x_max", "design_speed")
+
+
+def mesh_options(options: Mapping[str, object], source: str = "mesh options") -> dict[str, int | float]:
+    """Check meshing options (a study's [mesh] table, ``--mesh KEY=VALUE``) and convert their values.
+
+    Raises :class:`ConfigurationError` naming an unknown option or a value of the wrong kind.
+    """
+    kinds = {f.name: (int if f.type == "int" else float) for f in dataclasses.fields(MeshDesign)
+             if f.name not in _FROM_THE_BODY}
+    checked = {}
+    for name, value in options.items():
+        if name not in kinds:
+            raise ConfigurationError(f"{source}: unknown mesh option {name!r}; options are {', '.join(sorted(kinds))}")
+        try:
+            number = float(value)
+        except (TypeError, ValueError):
+            raise ConfigurationError(f"{source}: mesh option {name} = {value!r} is not a number")
+        if kinds[name] is int and number != int(number):
+            raise ConfigurationError(f"{source}: mesh option {name} = {value!r} must be a whole number")
+        checked[name] = kinds[name](number)
+    return checked
 
 
 def is_thin_part(component: str) -> bool:

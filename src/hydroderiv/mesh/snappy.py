@@ -13,13 +13,14 @@ import shutil
 import time
 from dataclasses import asdict
 from pathlib import Path
-from typing import Callable
+from typing import Callable, Mapping
 
-from .._foam import quoted, write_foam_dict
+from .._foam import quoted, write_decomposition, write_foam_dict
 from .._io import atomic_write_text
+from ..errors import ConfigurationError
 from ..geometry import Body
 from ..run.openfoam import run_application
-from .design import REFINEMENT_RATIO, MeshDesign, is_thin_part
+from .design import REFINEMENT_RATIO, MeshDesign, is_thin_part, mesh_options
 from .quality import MeshQualityError, layer_coverage, parse_check_mesh, sphere_interface_spread
 
 FARFIELD = "farfield"
@@ -266,11 +267,15 @@ def _write_meshing_controls(case: Path) -> None:
 
     write_foam_dict(case / "system/controlDict", {"application": "snappyHexMesh", "startFrom": "latestTime",
                                                   "startTime": 0, "stopAt": "endTime", "endTime": 0, "deltaT": 1,
-                                                  "writeControl": "timeStep", "writeInterval": 1})
+                                                  "writeControl": "timeStep", "writeInterval": 1,
+                                                  # ASCII (the interface check reads the points) with enough
+                                                  # digits for sub-millimetre prism layers in a 35 m domain, and
+                                                  # for reconstructParMesh's merge tolerance
+                                                  "writeFormat": "ascii", "writePrecision": 12})
     write_numerics(case)
 
 
-def write_mesh_case(case: Path, body: Body, design: MeshDesign) -> None:
+def write_mesh_case(case: Path, body: Body, design: MeshDesign, n_procs: int = 1) -> None:
     """Write every dictionary meshing needs, and the body surface, into ``case``."""
 
     case.mkdir(parents=True, exist_ok=True)
@@ -281,19 +286,38 @@ def write_mesh_case(case: Path, body: Body, design: MeshDesign) -> None:
     _write_meshing_controls(case)
     _write_block_mesh(case, design)
     _write_snappy(case, design, body.component_names)
+    if n_procs > 1:
+        write_decomposition(case, n_procs)
 
 
-def _run_steps(case: Path, steps: list[tuple[str, list[str]]], log: Callable[[str], None]) -> dict[str, float]:
+def _snappy_steps(n_procs: int) -> list[tuple[str, list[str], int]]:
+    """snappyHexMesh itself, on one core or on ``n_procs`` MPI ranks.
+
+    In parallel the castellated mesh is decomposed (hierarchical: scotch and metis may be stubs), snapped
+    with layers on every rank, then merged back into ``constant/polyMesh`` with its zones; snappy's
+    layer-count field, which the layer coverage is read from, is merged back too.
+    """
+    if n_procs <= 1:
+        return [("snappyHexMesh", ["snappyHexMesh", "-overwrite"], 1)]
+    return [
+        ("decomposePar", ["decomposePar", "-force"], 1),
+        ("snappyHexMesh", ["snappyHexMesh", "-overwrite"], n_procs),
+        ("reconstructParMesh", ["reconstructParMesh", "-constant"], 1),
+        ("reconstructPar", ["reconstructPar", "-withZero", "-fields", "(nSurfaceLayers)"], 1),
+    ]
+
+
+def _run_steps(case: Path, steps: list[tuple[str, list[str], int]], log: Callable[[str], None]) -> dict[str, float]:
     """Run the meshing utilities in order; returns the wall time of each step.
 
     Step timings are kept on disk, so a mesh checked again after an interruption still reports its cost.
     """
     timings_path = case / "timings.json"
     timings = json.loads(timings_path.read_text()) if timings_path.is_file() else {}
-    for name, command in steps:
-        log(f"  {name} ...")
+    for name, command, n_procs in steps:
+        log(f"  {name} ..." + (f" ({n_procs} ranks)" if n_procs > 1 else ""))
         t0 = time.monotonic()
-        run_application(case, command, log_name=name)
+        run_application(case, command, log_name=name, n_procs=n_procs)
         timings[name] = round(time.monotonic() - t0, 1)
         atomic_write_text(timings_path, json.dumps(timings))
     return timings
@@ -311,43 +335,75 @@ def _quality_gate(case: Path, log: Callable[[str], None]) -> dict:
     return check
 
 
+def _check_same_design(case: Path, built: dict, wanted: dict) -> None:
+    """A finished mesh is reused only if it was built to the design asked for now.
+
+    Otherwise results would silently come from another mesh, for example after a default changed. Fields
+    the stored report lacks (meshes from before they existed) are not compared.
+    """
+    differ = [f"{name} {built[name]!r} (asked {value!r})" for name, value in wanted.items()
+              if name in built and not _same(built[name], value)]
+    if differ:
+        raise ConfigurationError(
+            f"the mesh in {case} was built to another design: {', '.join(differ)}. Remove it to mesh again, use "
+            "another work directory, or ask for the design it has (a study's [mesh] table, --mesh KEY=VALUE)")
+
+
+def _same(a, b) -> bool:
+    if isinstance(a, (int, float)) and isinstance(b, (int, float)):
+        return math.isclose(a, b, rel_tol=1e-9, abs_tol=1e-12)
+    return a == b
+
+
 def build_mesh(
     body: Body,
     level: str,
     case: str | Path,
     design_speed: float = 3.344,
     log: Callable[[str], None] = print,
+    options: Mapping[str, object] | None = None,
+    n_procs: int = 1,
 ) -> dict:
     """Mesh ``body`` at ``level`` into ``case`` (reusing a finished mesh there) and return its report.
 
-    Raises :class:`MeshQualityError` when checkMesh fails; the report names the failed checks.
+    snappyHexMesh runs on ``n_procs`` MPI ranks (the other steps are quick and serial).
+
+    ``options`` set MeshDesign fields (see :func:`~hydroderiv.mesh.design.mesh_options`). Raises
+    :class:`MeshQualityError` when checkMesh fails; the report names the failed checks. Raises
+    :class:`ConfigurationError` when the mesh found in ``case`` was built to a different design.
     """
     case = Path(case)
     report_path = case / REPORT_FILE
-    if report_path.is_file():
-        report = json.loads(report_path.read_text())
-        log(f"mesh {case} exists ({report['cells']} cells); reusing it")
-        return report
     lo, hi = body.surface.bounds
     radius = float(max(abs(lo[1]), abs(hi[1]), abs(lo[2]), abs(hi[2])))
-    design = MeshDesign(level, body.reference.length, radius, float(lo[0]), float(hi[0]), design_speed=design_speed)
-    snapped = case / "log.snappyHexMesh"
+    design = MeshDesign(level, body.reference.length, radius, float(lo[0]), float(hi[0]), design_speed=design_speed,
+                        **mesh_options(options or {}))
+    if report_path.is_file():
+        report = json.loads(report_path.read_text())
+        _check_same_design(case, report.get("design", {}), asdict(design))
+        log(f"mesh {case} exists ({report['cells']} cells); reusing it")
+        return report
+    snappy = _snappy_steps(n_procs)
+    snapped = case / f"log.{snappy[-1][0]}"  # the last step that builds the mesh
+    check = [("checkMesh", ["checkMesh", "-constant"], 1)]
     if snapped.is_file() and snapped.read_text().rstrip().endswith("End"):
         # snappyHexMesh finished before an interruption (or a failed gate): check it again, don't re-mesh
         log(f"mesh {case} was snapped before; checking it again")
-        steps = [("checkMesh", ["checkMesh", "-constant"])]
+        steps = check
     else:
         if case.exists():
             shutil.rmtree(case)  # an unfinished mesh from an interrupted run
-        write_mesh_case(case, body, design)
+        write_mesh_case(case, body, design, n_procs)
         steps = [
-            ("blockMesh", ["blockMesh"]),
-            ("surfaceFeatureExtract", ["surfaceFeatureExtract"]),
-            ("snappyHexMesh.pre", ["snappyHexMesh", "-overwrite", "-dict", "system/snappyHexMeshDict.pre"]),
-            ("snappyHexMesh", ["snappyHexMesh", "-overwrite"]),
-            ("checkMesh", ["checkMesh", "-constant"]),
+            ("blockMesh", ["blockMesh"], 1),
+            ("surfaceFeatureExtract", ["surfaceFeatureExtract"], 1),
+            ("snappyHexMesh.pre", ["snappyHexMesh", "-overwrite", "-dict", "system/snappyHexMeshDict.pre"], 1),
+            *snappy,
+            *check,
         ]
     timings = _run_steps(case, steps, log)
+    for processor in case.glob("processor*"):
+        shutil.rmtree(processor)  # merged back into constant/polyMesh
     check = _quality_gate(case, log)
     layers = design.layers()
     report = {
@@ -388,8 +444,8 @@ def build_empty_domain(case: str | Path, design: MeshDesign, log: Callable[[str]
     _write_meshing_controls(case)
     _write_block_mesh(case, design)
     _write_snappy(case, design, ())
-    _run_steps(case, [("blockMesh", ["blockMesh"]), ("snappyHexMesh", ["snappyHexMesh", "-overwrite"]),
-                      ("checkMesh", ["checkMesh", "-constant"])], log)
+    _run_steps(case, [("blockMesh", ["blockMesh"], 1), ("snappyHexMesh", ["snappyHexMesh", "-overwrite"], 1),
+                      ("checkMesh", ["checkMesh", "-constant"], 1)], log)
     check = _quality_gate(case, log)
     report = {"cells": check["cells"], "checkMesh": check,
               "rotating_sphere": {"radius_m": design.sphere_radius, **sphere_interface_spread(case, design.sphere_radius)}}

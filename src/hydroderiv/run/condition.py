@@ -17,6 +17,7 @@ import numpy as np
 
 from .._io import atomic_write_text
 from ..case.conditions import Condition
+from ..case.numerics import has_second_order_convection
 from ..case.setup import CaseSettings, latest_time_dir, write_condition_case
 from ..forces import COEFFICIENT_NAMES, PrimeScales
 from .monitor import ConvergenceCriterion
@@ -75,7 +76,14 @@ def run_condition(
         if n > 1:
             run_application(case, ["decomposePar", "-force"], log_name="decomposePar")
     scales = PrimeScales(settings.fluid.rho, condition.speed, settings.length)
-    result = run_steady(case, scales, settings.components, criterion, n, on_progress)
+    # An interrupted cold start resumes where its schemes are: still first order before the switch.
+    if resumed:
+        first_order = settings.second_order and not has_second_order_convection(case)
+        second_order_from = settings.first_order_start if first_order else None
+    else:
+        second_order_from = settings.second_order_from(warm_start)
+    result = run_steady(case, scales, settings.components, criterion, n, on_progress,
+                        second_order_from=second_order_from)
     if n > 1:
         run_application(case, ["reconstructPar", "-latestTime"], log_name="reconstructPar")
         for processor in case.glob("processor*"):
@@ -90,6 +98,8 @@ def run_condition(
         "wall_seconds": round(result.wall_time, 1),
         "resumed": resumed,
         "warm_start": str(warm_start) if warm_start else None,
+        # None: second-order convection from the first iteration (or switched before an interruption)
+        "second_order_from": second_order_from,
         "n_procs": n,
         "coefficients": dict(zip(COEFFICIENT_NAMES, map(float, result.coefficients))),
         "force_N": (result.coefficients[:3] * force_scale).tolist(),

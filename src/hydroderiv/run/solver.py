@@ -15,6 +15,7 @@ from typing import Callable
 
 import numpy as np
 
+from ..case.numerics import write_numerics
 from ..errors import HydroderivError
 from ..forces import PrimeScales, read_history
 from .monitor import ConvergenceCriterion, LogWatcher, force_divergence
@@ -85,11 +86,16 @@ def run_steady(
     n_procs: int = 1,
     on_progress: Callable[[Progress], None] | None = None,
     poll_seconds: float = 1.0,
+    second_order_from: int | None = None,
 ) -> RunResult:
     """Run simpleFoam in ``case`` until the forces converge; raise :class:`SolverDivergedError` on divergence.
 
     The case must already be set up (fields, controlDict with the ``forces_total`` and ``stop`` function
     objects, and, for ``n_procs > 1``, decomposed). The log is ``case/log.simpleFoam``.
+
+    With ``second_order_from``, the case starts with first-order convection: at that iteration its
+    fvSchemes is rewritten to second order (simpleFoam re-reads it), and convergence is judged only on a
+    full window of second-order iterations.
     """
     case = Path(case)
     (case / STOP_FILE).unlink(missing_ok=True)
@@ -100,6 +106,12 @@ def run_steady(
     stop_requested = False
     diverged: str | None = None
     iterations, coefficients = np.empty(0), np.empty((0, 6))
+    switch_pending = second_order_from is not None
+
+    def judged(its: np.ndarray) -> bool:
+        # the averaging window must hold second-order iterations only
+        return second_order_from is None or (len(its) > 0 and its[-1] >= second_order_from + criterion.window)
+
     # Appending keeps the log of an interrupted run that this call resumes.
     with open(log_path, "a") as log_out, open(log_path) as log_in:
         process = subprocess.Popen(command, cwd=case, env=foam_environment(case), stdout=log_out, stderr=subprocess.STDOUT)
@@ -118,7 +130,10 @@ def run_steady(
                     on_progress(Progress(watcher.iteration, dict(watcher.residuals), latest, drift, time.monotonic() - start))
                 if finished:
                     break
-                if not stop_requested and criterion.is_met(iterations, coefficients):
+                if switch_pending and watcher.iteration >= second_order_from:
+                    write_numerics(case, second_order=True)
+                    switch_pending = False
+                if not stop_requested and judged(iterations) and criterion.is_met(iterations, coefficients):
                     (case / STOP_FILE).touch()
                     stop_requested = True
                 time.sleep(poll_seconds)
@@ -137,7 +152,7 @@ def run_steady(
         raise OpenFOAMError(f"simpleFoam wrote no forces in {case}; log: {log_path}")
     # Converged if the criterion stopped the run (the solver may run an iteration or two past the request,
     # nudging a drift just over its tolerance), or if it holds at the end.
-    converged = stop_requested or criterion.is_met(iterations, coefficients)
+    converged = stop_requested or (not switch_pending and judged(iterations) and criterion.is_met(iterations, coefficients))
     per_component = {}
     for name in components:
         sampled, history = coefficient_history(case, scales, component_function_name(name))

@@ -36,15 +36,16 @@ def run_resistance(
     results_path: str | Path | None = None,
     log: Callable[[str], None] = print,
     on_progress: Callable[[float, Progress], None] | None = None,
+    mesh_options: dict[str, float] | None = None,
 ) -> list[dict]:
     """Mesh once, then run every speed (lowest first, each warm-started from the one before).
 
     Results are saved after every speed (atomically), so an interrupted study loses nothing finished and
     resumes where it stopped.
     """
-    ws = Workspace(Path(work), level)
+    ws = Workspace(Path(work), level, mesh_options=tuple(sorted((mesh_options or {}).items())))
     body = ws.body(config, body_dir)
-    mesh = ws.mesh(body, log=log)
+    mesh = ws.mesh(body, log=log, n_procs=n_procs)
     settings = CaseSettings(length=body.reference.length, components=body.component_names, n_procs=n_procs,
                             max_iterations=criterion.max_iterations)
     experiment_key = config.upper() if body_dir is None else None

@@ -23,6 +23,9 @@ Example::
     [convergence]             # optional, see ConvergenceCriterion
     rel_tol = 0.005
 
+    [mesh]                    # optional: MeshDesign options, e.g. appendage_extra_level = 2
+    thin_max_layers = 4
+
     [fit]                     # optional, see DerivativeFit
     nonlinear = "abs"         # "abs" (Gertler-Hagen v|v|, default), "cubic" or "none" (one point each side)
     offset = true             # fit a constant too (default): absorbs an asymmetry such as the sail's
@@ -48,6 +51,7 @@ from ..case.setup import CaseSettings, latest_time_dir
 from ..derivatives.fit import NONLINEAR_TERMS
 from ..errors import ConfigurationError, HydroderivError
 from ..geometry import Body
+from ..mesh.design import mesh_options
 from ..run.condition import read_result, run_condition
 from ..run.monitor import ConvergenceCriterion
 from ..run.solver import Progress
@@ -77,6 +81,7 @@ class Study:
     method: str = "hybrid"
     nonlinear: str = "abs"  # the derivative fit's nonlinear term
     fit_offset: bool = True
+    mesh_options: tuple[tuple[str, float], ...] = ()  # the [mesh] table: MeshDesign fields, as (name, value)
 
     @classmethod
     def load(cls, path: str | Path) -> Study:
@@ -88,7 +93,7 @@ class Study:
         except tomllib.TOMLDecodeError as error:
             raise ConfigurationError(f"{path}: not valid TOML: {error}")
         head = data.get("study", {})
-        unknown = set(data) - {"study", "sweeps", "conditions", "convergence", "fit"}
+        unknown = set(data) - {"study", "sweeps", "conditions", "convergence", "fit", "mesh"}
         if unknown:
             raise ConfigurationError(f"{path}: unknown section(s) {', '.join(sorted(unknown))}")
         body, body_dir = head.get("body"), head.get("body_dir")
@@ -139,11 +144,12 @@ class Study:
             method=method,
             nonlinear=nonlinear,
             fit_offset=bool(fit.get("offset", True)),
+            mesh_options=tuple(sorted(mesh_options(data.get("mesh", {}), str(path)).items())),
         )
 
     @property
     def workspace(self) -> Workspace:
-        return Workspace(self.work, self.level, self.method)
+        return Workspace(self.work, self.level, self.method, self.mesh_options)
 
     def case_settings(self, body: Body) -> CaseSettings:
         """What every condition of this study needs besides the condition itself."""
@@ -153,7 +159,7 @@ class Study:
     def case_dir(self, condition: Condition) -> Path:
         """Where ``condition`` runs. Without rotation both frame methods are the same translation, so a
         classic study shares the straight runs of the hybrid one on the same mesh instead of repeating them."""
-        workspace = self.workspace if condition.is_turning else Workspace(self.work, self.level)
+        workspace = self.workspace if condition.is_turning else Workspace(self.work, self.level, mesh_options=self.mesh_options)
         return workspace.condition_dir(condition.name)
 
     def status(self) -> dict[str, list[str]]:
@@ -214,7 +220,7 @@ def run_study(
     """
     ws = study.workspace
     body = ws.body(study.body, study.body_dir)
-    ws.mesh(body, log=log)
+    ws.mesh(body, log=log, n_procs=study.n_procs)
     settings = study.case_settings(body)
     order = run_order(study.conditions)
     # Warm-start candidates: every condition already finished, by an earlier run of this study too, so a

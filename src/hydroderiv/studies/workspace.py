@@ -24,6 +24,7 @@ class Workspace:
     root: Path
     level: str
     method: str = "hybrid"
+    mesh_options: tuple[tuple[str, float], ...] = ()  # MeshDesign fields set by the user, as (name, value)
 
     @property
     def geometry_dir(self) -> Path:
@@ -45,8 +46,8 @@ class Workspace:
         body.write(self.geometry_dir)
         return body
 
-    def mesh(self, body: Body, log: Callable[[str], None] = print) -> dict:
-        return build_mesh(body, self.level, self.mesh_dir, log=log)
+    def mesh(self, body: Body, log: Callable[[str], None] = print, n_procs: int = 1) -> dict:
+        return build_mesh(body, self.level, self.mesh_dir, log=log, options=dict(self.mesh_options), n_procs=n_procs)
 
 
 def is_suboff(name: str) -> bool:
