@@ -37,10 +37,12 @@ class DerivativeFit:
         self.nonlinear = nonlinear
         self.fit_offset = fit_offset
 
-    @property
-    def magnitudes_needed(self) -> int:
-        """Distinct non-zero |x| the odd terms need: one for the slope, one more for a nonlinear term."""
-        return 1 if NONLINEAR_TERMS.get(self.nonlinear) is None else 2
+    def has_enough_magnitudes(self, x) -> bool:
+        """Whether ``x`` holds the distinct non-zero |x| the odd terms need: one for the slope, one more for
+        a nonlinear term."""
+        x = np.asarray(x, dtype=float)
+        needed = 1 if NONLINEAR_TERMS.get(self.nonlinear) is None else 2
+        return len(np.unique(np.abs(x[x != 0]))) >= needed
 
     def _design(self, x: np.ndarray) -> np.ndarray:
         if self.nonlinear not in NONLINEAR_TERMS:
@@ -57,7 +59,7 @@ class DerivativeFit:
         x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
         design = self._design(x)
         n, p = design.shape
-        if n < p or len(np.unique(np.abs(x[x != 0]))) < self.magnitudes_needed:
+        if n < p or not self.has_enough_magnitudes(x):
             raise ConfigurationError(
                 f"{n} points at {len(np.unique(np.abs(x)))} distinct magnitudes cannot determine {p} terms; "
                 "add conditions to the sweep"

@@ -97,7 +97,7 @@ def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = T
             stds.append(window_std[COEFFICIENT_NAMES.index(coefficient)] if window_std else np.nan)
         xs, us, ys, stds = map(np.asarray, (xs, us, ys, stds))
         estimator = DerivativeFit(nonlinear=nonlinear, fit_offset=fit_offset)
-        if len(np.unique(np.abs(xs[xs != 0]))) < estimator.magnitudes_needed:
+        if not estimator.has_enough_magnitudes(xs):
             continue  # this sweep was not run (or has too few magnitudes for a slope and a nonlinear term)
         estimator.fit(xs, ys, y_std=stds)
         fits[name] = SweepFit(xs, us, ys, estimator, stds)

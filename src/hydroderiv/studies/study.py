@@ -37,7 +37,7 @@ import json
 import os
 import tomllib
 import traceback
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field, fields, replace
 from pathlib import Path
 from typing import Callable
 
@@ -159,7 +159,7 @@ class Study:
     def case_dir(self, condition: Condition) -> Path:
         """Where ``condition`` runs. Without rotation both frame methods are the same translation, so a
         classic study shares the straight runs of the hybrid one on the same mesh instead of repeating them."""
-        workspace = self.workspace if condition.is_turning else Workspace(self.work, self.level, mesh_options=self.mesh_options)
+        workspace = self.workspace if condition.is_turning else replace(self.workspace, method="hybrid")
         return workspace.condition_dir(condition.name)
 
     def status(self) -> dict[str, list[str]]:
