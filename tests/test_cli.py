@@ -2,6 +2,8 @@
 
 import json
 
+import pytest
+
 from hydroderiv.cli import main
 
 
@@ -59,3 +61,35 @@ def test_progress_shows_each_condition_from_its_own_first_iteration(capsys):
     show("second", progress(30))
     lines = [line for line in capsys.readouterr().out.splitlines() if " it " in line]
     assert [line.split()[0] for line in lines] == ["first", "first", "first", "second"]
+
+
+def test_a_committed_table_is_refitted_from_the_forces_it_carries(tmp_path, capsys):
+    """``derivatives --conditions`` refits the committed medium AFF-8 table without its work directory: the
+    same fits, and per magnitude the mirror pair's single point, (Y'(+b) - Y'(-b)) / (2 cos b sin b)."""
+    import math
+    from pathlib import Path
+
+    root = Path(__file__).parent.parent
+    committed = json.loads((root / "validation/derivatives-AFF-8-medium.json").read_text())
+    out = tmp_path / "refit.json"
+    code = main(["derivatives", str(root / "studies/aff8-medium.toml"), "--conditions",
+                 str(root / "validation/derivatives-AFF-8-medium.json"), "--out", str(out)])
+    assert code == 0 and "Yv" in capsys.readouterr().out
+    refit = json.loads(out.read_text())
+    for name in ("Yv", "Nv", "Zw", "Mw", "Yr", "Nr"):
+        assert refit[name] == pytest.approx(committed[name], rel=1e-12)
+    side_force = {c["condition"]["drift_deg"]: c["coefficients"]["Y"] for c in committed["conditions"]
+                  if c["condition"]["pitch_deg"] == 0 and c["condition"]["yaw_rate_prime"] == 0}
+    b = math.radians(4)
+    mirror_pair = -(side_force[4] - side_force[-4]) / (2 * math.cos(b) * math.sin(b))
+    assert refit["details"]["Yv"]["single_point_by_magnitude"]["4"] == pytest.approx(mirror_pair, rel=1e-9)
+
+
+def test_a_table_without_conditions_is_named(tmp_path, capsys):
+    from pathlib import Path
+
+    study = Path(__file__).parent.parent / "studies/aff8-medium.toml"
+    bad = tmp_path / "t.json"
+    bad.write_text('{"Yv": -0.02}')
+    assert main(["derivatives", str(study), "--conditions", str(bad)]) == 2
+    assert "not a derivative table with a 'conditions' list" in capsys.readouterr().out

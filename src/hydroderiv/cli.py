@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import argparse
+import json
 import signal
 import sys
 from pathlib import Path
@@ -151,6 +152,18 @@ def _study_status(args: argparse.Namespace) -> int:
     return 0
 
 
+def _conditions_of_table(path: Path) -> list[dict]:
+    """The condition records a derivative table JSON carries, so that a committed table can be refitted
+    (another nonlinear term, a new column) without the study's work directory."""
+    try:
+        conditions = json.loads(path.read_text())["conditions"]
+    except FileNotFoundError:
+        raise HydroderivError(f"{path}: no such derivative table") from None
+    except (json.JSONDecodeError, KeyError, TypeError):
+        raise HydroderivError(f"{path}: not a derivative table with a 'conditions' list") from None
+    return conditions
+
+
 def _derivatives(args: argparse.Namespace) -> int:
     from .derivatives.table import fit_sweeps, table_rows, write_table
     from .experiments import DERIVATIVES
@@ -159,18 +172,22 @@ def _derivatives(args: argparse.Namespace) -> int:
     from .studies.study import Study
 
     study = Study.load(args.file)
-    results = [r for c in study.conditions if (r := read_result(study.case_dir(c)))]
+    if getattr(args, "conditions", None):
+        results = _conditions_of_table(Path(args.conditions))
+    else:
+        results = [r for c in study.conditions if (r := read_result(study.case_dir(c)))]
     fits = fit_sweeps(results, study.nonlinear, study.fit_offset)  # once: the table and the plot show the same fits
     rows = table_rows(fits, reference_key=study.body)
     if not rows:
         raise HydroderivError(f"no sweep of {study.path} has enough finished conditions for a derivative yet")
     table = Table(title=f"derivatives, {study.body or study.body_dir} on the {study.level} mesh (prime units, L-based)")
-    for column in ("derivative", "fit", "std. error", "iterative", "single-point", "points", "experiment", "error (%)",
-                   "exp. unc. (%)"):
+    for column in ("derivative", "fit", "std. error", "iterative", "single-point", "single-point by magnitude", "points",
+                   "experiment", "error (%)", "exp. unc. (%)"):
         table.add_column(column, justify="right")
     for row in rows:
         table.add_row(row.name, f"{row.value:+.5f}", f"{row.stderr:.1e}", f"{row.iterative_stderr:.1e}",
-                      f"{row.single_point:+.5f}", str(row.n_points),
+                      f"{row.single_point:+.5f}",
+                      "  ".join(f"{k}: {v:+.5f}" for k, v in row.single_point_by_magnitude.items()), str(row.n_points),
                       "-" if row.reference is None else f"{row.reference:+.6f}",
                       "-" if row.error_pct is None else f"{row.error_pct:+.1f}", f"{row.experimental_uncertainty_pct:.0f}")
     console.print(table)
@@ -245,6 +262,8 @@ def build_parser() -> argparse.ArgumentParser:
     der = steps.add_parser("derivatives", help="fit the derivative table from a study's finished conditions")
     der.add_argument("file", help="the study TOML file")
     der.add_argument("--out", help="JSON output (default WORK/derivatives.json); CSV beside it")
+    der.add_argument("--conditions", metavar="TABLE_JSON",
+                     help="take the conditions' forces from a derivative table written earlier, not from WORK")
     der.set_defaults(func=_derivatives)
     return parser
 

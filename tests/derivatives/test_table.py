@@ -38,6 +38,15 @@ def test_fits_each_sweep_and_compares_with_the_experiment(tmp_path):
         100 * (rows["Yv"].value + 0.027839) / 0.027839)
     # the single-point definition Y'/(u'v') is exact for a purely linear force
     assert rows["Nv"].single_point == pytest.approx(-0.0135, rel=1e-9)
+    # per magnitude: Y' carries 0.02 v'|v'| on top of the linear term, so its single point grows with the angle
+    # by 0.02 |v'|/u' (exact: Y'/(u'v') = yv + 0.02 |v'|/u'); N' is linear, the same at both magnitudes
+    by_angle = rows["Yv"].single_point_by_magnitude
+    assert set(by_angle) == {"4", "8"}
+    for angle in (4, 8):
+        b = np.radians(angle)
+        assert by_angle[str(angle)] == pytest.approx(-0.0278 + 0.02 * np.tan(b), rel=1e-9)
+    assert rows["Nv"].single_point_by_magnitude == pytest.approx({"4": -0.0135, "8": -0.0135}, rel=1e-9)
+    assert set(rows["Nr"].single_point_by_magnitude) == {"0.1", "0.2"}
     assert rows["Nv"].experimental_uncertainty_pct == 5 and rows["Nr"].experimental_uncertainty_pct == 10
     results = synthetic_results()
     json_path, csv_path = write_table(list(rows.values()), tmp_path / "d.json", {"level": "x"}, results)
@@ -45,6 +54,8 @@ def test_fits_each_sweep_and_compares_with_the_experiment(tmp_path):
     assert len(data["conditions"]) == len(results)  # the points behind the fits travel with the table
     assert data["conditions"][0]["coefficients"] == results[0]["coefficients"]
     assert data["Yr"] == rows["Yr"].value and "Yr" in csv_path.read_text()
+    assert data["details"]["Nv"]["single_point_by_magnitude"]["8"] == pytest.approx(-0.0135)
+    assert "4:-0.0135 8:-0.0135" in csv_path.read_text()  # one CSV cell per derivative
     assert data["details"]["Yr"]["iterative_stderr"] is None  # records without a window deviation: null, not NaN
 
 

@@ -44,6 +44,7 @@ def test_forces_stopped_the_run_not_an_iteration_count(straight):
     assert progress and progress[-1].iteration >= 100 and "p" in progress[-1].residuals
     assert record["yplus"]["hull"]["mean"] > 20
     assert record["openfoam_version"]  # provenance: the release that produced the result
+    assert record["total_seconds"] > record["wall_seconds"] > 0  # set-up and decomposition come on top
 
 
 def test_a_cold_start_switches_to_second_order_and_converges_on_it(straight):
@@ -65,6 +66,21 @@ def test_a_finished_condition_is_not_recomputed(straight, coarse_bare_hull):
     again = run_condition(case, coarse_bare_hull[0], Condition(speed=3.344), settings)
     assert again == json.loads((case / RESULT_FILE).read_text()) == record
     assert (case / RESULT_FILE).stat().st_mtime_ns == before
+
+
+def test_a_warm_start_from_the_converged_solution_stays_on_it(straight, coarse_bare_hull, tmp_path):
+    """The spliced binary fields are read by simpleFoam as the solution they came from."""
+    import re
+
+    from hydroderiv.case.setup import latest_time_dir
+
+    case, record, _, settings = straight
+    warm = run_condition(tmp_path / "warm", coarse_bare_hull[0], Condition(speed=3.344), settings,
+                         ConvergenceCriterion(min_iterations=120), warm_start=latest_time_dir(case))
+    assert warm["second_order_from"] is None  # a warm start needs no first-order iterations
+    first_ux = float(re.search(r"Solving for Ux, Initial residual = ([^,]+),", (tmp_path / "warm/log.simpleFoam").read_text())[1])
+    assert first_ux < 1e-2  # a cold start begins at 1
+    assert warm["force_N"][0] == pytest.approx(record["force_N"][0], rel=0.01)
 
 
 def test_a_diverging_run_is_stopped_and_named(coarse_bare_hull, tmp_path):

@@ -24,6 +24,7 @@ from .conditions import Condition
 from .fluid import Fluid, FreestreamTurbulence
 from .frames import FRAME_METHODS, FrameSetup, frame_setup
 from .numerics import write_numerics
+from .warm_start import take_internal_field
 
 COMPONENT_INTERVAL = 10  # iterations between per-component force samples
 
@@ -216,7 +217,9 @@ def _fields(condition: Condition, frame: FrameSetup, s: CaseSettings) -> dict[st
     }
 
 
-def _write_fields(case: Path, condition: Condition, frame: FrameSetup, s: CaseSettings, warm_start: Path | None) -> None:
+def _write_fields(
+    case: Path, condition: Condition, frame: FrameSetup, s: CaseSettings, warm_start: Path | None, n_cells: int | None
+) -> None:
     zero = case / "0"
     if zero.exists():
         shutil.rmtree(zero)
@@ -230,16 +233,7 @@ def _write_fields(case: Path, condition: Condition, frame: FrameSetup, s: CaseSe
             foam_class=spec["class"],
         )
         if warm_start is not None:
-            _take_internal_field(zero / name, warm_start / name)
-
-
-def _take_internal_field(target: Path, source: Path) -> None:
-    """Replace the uniform internalField of ``target`` by the solution in ``source`` (same mesh)."""
-    from foamlib import FoamFieldFile
-
-    solved = FoamFieldFile(source).internal_field
-    with FoamFieldFile(target) as f:
-        f.internal_field = solved
+            take_internal_field(zero / name, warm_start / name, n_cells)
 
 
 def latest_time_dir(case: Path) -> Path | None:
@@ -283,7 +277,7 @@ def mesh_cell_count(poly_mesh: Path) -> int:
     head = (Path(poly_mesh) / "owner").read_bytes()[:4096].decode("ascii", errors="replace")
     found = re.search(r"nCells:\s*(\d+)", head)
     if not found:
-        raise ConfigurationError(f"{poly_mesh}/owner has no nCells note in its header; cannot size the classic zone")
+        raise ConfigurationError(f"{poly_mesh}/owner has no nCells note in its header; cannot count its cells")
     return int(found.group(1))
 
 
@@ -308,5 +302,6 @@ def write_condition_case(
     write_numerics(case, settings.second_order and settings.second_order_from(warm_start) is None)
     write_decomposition(case, settings.n_procs)
     _write_physics(case, frame, settings)
-    _write_fields(case, condition, frame, settings, warm_start)
+    n_cells = mesh_cell_count(mesh_case / "constant/polyMesh") if warm_start is not None else None
+    _write_fields(case, condition, frame, settings, warm_start, n_cells)
     return case

@@ -8,7 +8,10 @@ is the linear term of a :class:`DerivativeFit` over its one-variable sweep (stra
     Y'r, N'r  from yaw turns    Z'q, M'q  from pitch turns
 
 The seed paper's single-point definitions are reported beside them, e.g. Y'v = Y'/(u'v')
-(= -Y'/(cos b sin b)) and Y'r = Y'/r', averaged over the sweep's non-zero points.
+(= -Y'/(cos b sin b)) and Y'r = Y'/r': averaged over the sweep's non-zero points, and per magnitude of the
+sweep (4 and 8 degrees, r' = 0.1 and 0.2). The per-magnitude values show how far the force is from linear,
+and so how much the fitted slope depends on the nonlinear term chosen: with two magnitudes a slope and a
+nonlinear term are interpolated, not over-determined.
 """
 
 from __future__ import annotations
@@ -62,6 +65,7 @@ class DerivativeRow:
     nonlinear: float
     offset: float
     single_point: float
+    single_point_by_magnitude: dict[str, float]  # sweep magnitude (degrees, or r' / q') -> Y'/(u'v') or Y'/r'
     n_points: int
     reference: float | None
     error_pct: float | None
@@ -71,36 +75,39 @@ class DerivativeRow:
 @dataclass
 class SweepFit:
     """One derivative's sweep: motion variable x, axial ratio u', coefficient y (with its window standard
-    deviation, NaN where a record predates it), and the fitted estimator."""
+    deviation, NaN where a record predates it), the fitted estimator, and each point's value of the sweep
+    as the study gives it (degrees of drift or pitch, r' or q')."""
 
     xs: np.ndarray
     us: np.ndarray
     ys: np.ndarray
     fit: DerivativeFit
     y_std: np.ndarray | None = None
+    sweep_values: np.ndarray | None = None
 
 
 def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = True) -> dict[str, SweepFit]:
     """Fit every derivative whose sweep has enough points. ``results`` are condition result records."""
     fits = {}
     for name, (sweep, coefficient, _) in DEFINITIONS.items():
-        xs, us, ys, stds = [], [], [], []
+        xs, us, ys, stds, values = [], [], [], [], []
         for record in results:
             condition = Condition(**record["condition"])
             if not _on_sweep(condition, sweep):
                 continue
             x, u = motion_variable(condition, sweep)
+            values.append(getattr(condition, sweep))
             xs.append(x)
             us.append(u)
             ys.append(record["coefficients"][coefficient])
             window_std = record.get("window_std")
             stds.append(window_std[COEFFICIENT_NAMES.index(coefficient)] if window_std else np.nan)
-        xs, us, ys, stds = map(np.asarray, (xs, us, ys, stds))
+        xs, us, ys, stds, values = map(np.asarray, (xs, us, ys, stds, values))
         estimator = DerivativeFit(nonlinear=nonlinear, fit_offset=fit_offset)
         if not estimator.has_enough_magnitudes(xs):
             continue  # this sweep was not run (or has too few magnitudes for a slope and a nonlinear term)
         estimator.fit(xs, ys, y_std=stds)
-        fits[name] = SweepFit(xs, us, ys, estimator, stds)
+        fits[name] = SweepFit(xs, us, ys, estimator, stds, values)
     return fits
 
 
@@ -121,7 +128,10 @@ def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> l
         nonzero = xs != 0
         # single-point definitions: static Y'v = Y'/(u'v'); rotary Y'r = Y'/r'
         denominators = xs[nonzero] * (us[nonzero] if kind == "static" else 1.0)
-        single = float(np.mean(ys[nonzero] / denominators))
+        singles = ys[nonzero] / denominators
+        single = float(np.mean(singles))
+        magnitudes = np.abs(sweep.sweep_values[nonzero]) if sweep.sweep_values is not None else np.abs(xs[nonzero])
+        by_magnitude = {f"{m:g}": float(np.mean(singles[magnitudes == m])) for m in np.unique(magnitudes)}
         ref = reference.get(name)
         rows.append(
             DerivativeRow(
@@ -132,6 +142,7 @@ def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> l
                 nonlinear=fit.nonlinear_,
                 offset=fit.offset_,
                 single_point=single,
+                single_point_by_magnitude=by_magnitude,
                 n_points=fit.n_points_,
                 reference=ref,
                 error_pct=100.0 * (fit.slope_ - ref) / abs(ref) if ref else None,
@@ -164,7 +175,9 @@ def write_table(rows: list[DerivativeRow], json_path: str | Path, meta: dict, re
     columns = list(DerivativeRow.__dataclass_fields__)
     writer.writerow(columns)
     for row in rows:
-        writer.writerow([getattr(row, c) for c in columns])
+        # the per-magnitude single points go in one cell, "4:-0.0232 8:-0.0291"
+        writer.writerow([" ".join(f"{k}:{v:.6g}" for k, v in value.items()) if isinstance(value, dict) else value
+                         for value in (getattr(row, c) for c in columns)])
     csv_path = json_path.with_suffix(".csv")
     atomic_write_text(csv_path, buffer.getvalue())
     return json_path, csv_path
