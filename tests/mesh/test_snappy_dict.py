@@ -31,6 +31,23 @@ def test_thin_parts_get_finer_cells_and_curvature_levels_but_the_hull_does_not(t
     assert _region_levels(tmp_path / "plain", dataclasses.replace(design, thin_curvature_levels=0))["sail"] == [fine, fine]
 
 
+def test_without_a_y_shift_the_background_grid_mirrors_about_the_centre_plane(tmp_path):
+    """grid_shift_y = 0: the background block spans -h..h in y, so every refinement level mirrors about y = 0;
+    x and z stay shifted off the axis."""
+    design = MeshDesign("coarse", 4.261, 0.476, -2.343, 2.013)
+
+    def grid(d, name):
+        write_mesh_case(tmp_path / name, suboff_body("AFF-8", resolution=0.04), d)
+        vertices = FoamFile(tmp_path / name / "system/blockMeshDict")["vertices"]
+        return [(min(v[i] for v in vertices), max(v[i] for v in vertices)) for i in range(3)]
+
+    (x0, x1), (y0, y1), (z0, z1) = grid(dataclasses.replace(design, grid_shift_y=0.0), "mirrored")
+    assert y0 == pytest.approx(-y1) and y1 == pytest.approx(design.half_width)
+    assert z0 == pytest.approx(-design.half_width + design.base_cell / 3)  # the axis stays off grid lines
+    (_, _), (y0, y1), (_, _) = grid(design, "default")
+    assert y0 == pytest.approx(-design.half_width + design.base_cell / 3)  # default: a third of a cell
+
+
 def test_thin_parts_can_take_fewer_prism_layers_than_the_hull(tmp_path):
     design = dataclasses.replace(MeshDesign("coarse", 4.261, 0.476, -2.343, 2.013), thin_max_layers=5)
     layers = _snappy_dict(tmp_path, design)["addLayersControls"]["layers"]

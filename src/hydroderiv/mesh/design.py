@@ -77,6 +77,10 @@ class MeshDesign:
     # than half the sail's half-thickness, and snappy then shrinks or drops the layers near the thin edges.
     # Four layers (5 mm) with their own minimum thickness survive on 75 % of the sail's faces.
     thin_max_layers: int = 4
+    # Shift of the background grid in y, in base cells (see GRID_SHIFT in snappy.py). 0 makes the mesh
+    # mirror-symmetric about y = 0, so that a symmetric body feels no side force at zero incidence from
+    # lopsided snapping; a thin part whose mid-plane then lies on a grid plane may snap badly at its root.
+    grid_shift_y: float = 1.0 / 3.0
     sphere_surface_level: int = 2
     sphere_inside_level: int = 1
     yplus_target: float = 50.0

@@ -38,13 +38,16 @@ def _vec(values) -> list[float]:
 # hull axis at every refinement level, so the nose tip becomes a vertex shared by four cells; layered, those
 # cells made simpleFoam blow up at the nose (760 m/s there after 50 iterations on the medium AFF-8 mesh).
 # A third of a base cell is 1/3 or 2/3 of a cell at every refinement level (1/3 = 0.0101... in binary), so the
-# axis never comes closer than a third of a cell to a grid plane.
+# axis never comes closer than a third of a cell to a grid plane. The y shift is a mesh option
+# (MeshDesign.grid_shift_y): at 0, y = 0 is a grid plane at every level and the mesh mirrors about the
+# vertical centre plane, while the z shift still keeps the axis off every grid line.
 GRID_SHIFT = (1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0)
 
 
 def _write_block_mesh(case: Path, d: MeshDesign) -> None:
     h, n = d.half_width, d.base_cells
-    sx, sy, sz = (f * d.base_cell for f in GRID_SHIFT)
+    shift = (GRID_SHIFT[0], d.grid_shift_y, GRID_SHIFT[2])
+    sx, sy, sz = (f * d.base_cell for f in shift)
     corners = [[-h, -h, -h], [h, -h, -h], [h, h, -h], [-h, h, -h], [-h, -h, h], [h, -h, h], [h, h, h], [-h, h, h]]
     vertices = [_vec([x + sx, y + sy, z + sz]) for x, y, z in corners]
     faces = [[0, 4, 7, 3], [1, 2, 6, 5], [0, 1, 5, 4], [3, 7, 6, 2], [0, 3, 2, 1], [4, 5, 6, 7]]
