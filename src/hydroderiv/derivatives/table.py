@@ -82,8 +82,8 @@ class SweepFit:
     us: np.ndarray
     ys: np.ndarray
     fit: DerivativeFit
+    sweep_values: np.ndarray
     y_std: np.ndarray | None = None
-    sweep_values: np.ndarray | None = None
 
 
 def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = True) -> dict[str, SweepFit]:
@@ -107,7 +107,7 @@ def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = T
         if not estimator.has_enough_magnitudes(xs):
             continue  # this sweep was not run (or has too few magnitudes for a slope and a nonlinear term)
         estimator.fit(xs, ys, y_std=stds)
-        fits[name] = SweepFit(xs, us, ys, estimator, stds, values)
+        fits[name] = SweepFit(xs, us, ys, estimator, sweep_values=values, y_std=stds)
     return fits
 
 
@@ -130,7 +130,7 @@ def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> l
         denominators = xs[nonzero] * (us[nonzero] if kind == "static" else 1.0)
         singles = ys[nonzero] / denominators
         single = float(np.mean(singles))
-        magnitudes = np.abs(sweep.sweep_values[nonzero]) if sweep.sweep_values is not None else np.abs(xs[nonzero])
+        magnitudes = np.abs(sweep.sweep_values[nonzero])
         by_magnitude = {f"{m:g}": float(np.mean(singles[magnitudes == m])) for m in np.unique(magnitudes)}
         ref = reference.get(name)
         rows.append(
