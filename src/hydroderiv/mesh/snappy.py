@@ -20,7 +20,7 @@ from .._io import atomic_write_text
 from ..errors import ConfigurationError
 from ..geometry import Body
 from ..run.openfoam import run_application
-from .design import REFINEMENT_RATIO, MeshDesign, is_thin_part, mesh_options
+from .design import GRID_SHIFT, REFINEMENT_RATIO, MeshDesign, is_thin_part, mesh_options
 from .quality import MeshQualityError, layer_coverage, parse_check_mesh, sphere_interface_spread
 
 FARFIELD = "farfield"
@@ -32,16 +32,6 @@ REPORT_FILE = "mesh.json"
 
 def _vec(values) -> list[float]:
     return [round(float(v), 10) for v in values]
-
-
-# Shift of the background grid, in base cells. A cube centred exactly on B puts grid planes through the
-# hull axis at every refinement level, so the nose tip becomes a vertex shared by four cells; layered, those
-# cells made simpleFoam blow up at the nose (760 m/s there after 50 iterations on the medium AFF-8 mesh).
-# A third of a base cell is 1/3 or 2/3 of a cell at every refinement level (1/3 = 0.0101... in binary), so the
-# axis never comes closer than a third of a cell to a grid plane. The y shift is a mesh option
-# (MeshDesign.grid_shift_y): at 0, y = 0 is a grid plane at every level and the mesh mirrors about the
-# vertical centre plane, while the z shift still keeps the axis off every grid line.
-GRID_SHIFT = (1.0 / 3.0, 1.0 / 3.0, 1.0 / 3.0)
 
 
 def _write_block_mesh(case: Path, d: MeshDesign) -> None:
