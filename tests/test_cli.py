@@ -93,3 +93,10 @@ def test_a_table_without_conditions_is_named(tmp_path, capsys):
     bad.write_text('{"Yv": -0.02}')
     assert main(["derivatives", str(study), "--conditions", str(bad)]) == 2
     assert "not a derivative table with a 'conditions' list" in capsys.readouterr().out
+
+
+def test_the_reversed_flow_of_a_study_with_nothing_finished_is_named(tmp_path, capsys):
+    study = tmp_path / "s.toml"
+    study.write_text(f'[study]\nbody = "AFF-1"\nlevel = "coarse"\nspeed_knots = 6.5\nwork = "{tmp_path / "work"}"\n[sweeps]\ndrift_deg = [4]\n')
+    assert main(["study", "flow", str(study)]) == 2
+    assert "has finished yet" in capsys.readouterr().out

@@ -12,6 +12,7 @@ from typing import Callable
 from rich.console import Console
 from rich.table import Table
 
+from ._io import atomic_write_text
 from .errors import ConfigurationError, HydroderivError
 from .experiments import RESISTANCE
 from .geometry import CONFIGURATIONS, Body, load_user_body, suboff_body
@@ -152,6 +153,30 @@ def _study_status(args: argparse.Namespace) -> int:
     return 0
 
 
+def _study_flow(args: argparse.Namespace) -> int:
+    from .studies.study import Study, study_reversed_flow
+
+    study = Study.load(args.file)
+    reports = study_reversed_flow(study, log=console.print)
+    if not reports:
+        raise HydroderivError(f"no condition of {study.path} has finished yet")
+    parts = list(next(iter(reports.values())))
+    table = Table(title=f"reversed flow at the wall, % of each part's area ({study.path})")
+    table.add_column("condition")
+    for part in parts:
+        table.add_column(part, justify="right")
+    for name, report in reports.items():
+        if "error" in report:
+            table.add_row(name, report["error"])
+        else:
+            table.add_row(name, *(f"{report[p]['reversed_pct']:.2f}" for p in parts))
+    console.print(table)
+    out = Path(args.out) if args.out else study.work / "reversed-flow.json"
+    atomic_write_text(out, json.dumps({"study": str(study.path), "level": study.level, "conditions": reports}, indent=2) + "\n")
+    console.print(f"written: {out}")
+    return 0
+
+
 def _conditions_of_table(path: Path) -> list[dict]:
     """The condition records a derivative table JSON carries, so that a committed table can be refitted
     (another nonlinear term, a new column) without the study's work directory."""
@@ -258,6 +283,10 @@ def build_parser() -> argparse.ArgumentParser:
     status = actions.add_parser("status", help="what is done, running, failed and left")
     status.add_argument("file")
     status.set_defaults(func=_study_status)
+    flow = actions.add_parser("flow", help="reversed flow at the wall, per condition and body part")
+    flow.add_argument("file")
+    flow.add_argument("--out", help="JSON output (default WORK/reversed-flow.json)")
+    flow.set_defaults(func=_study_flow)
 
     der = steps.add_parser("derivatives", help="fit the derivative table from a study's finished conditions")
     der.add_argument("file", help="the study TOML file")

@@ -99,3 +99,31 @@ def test_a_diverging_run_is_stopped_and_named(coarse_bare_hull, tmp_path):
         f["divSchemes"]["div(phi,U)"] = ("Gauss", "linear")
     with pytest.raises(SolverDivergedError, match=r"diverged .*(residual|force|floating)"):
         run_steady(case, PrimeScales(998.55, 3.344, 4.261), ("hull",), ConvergenceCriterion(), n_procs=1)
+
+
+def test_the_boundary_layer_stays_attached_over_the_whole_hull_area(straight, suboff):
+    _, record, _, _ = straight
+    flow = record["reversed_flow"]["hull"]
+    # the snapped wall faces cover the hull the geometry describes
+    assert flow["area_m2"] == pytest.approx(suboff("AFF-1").component_areas()["hull"], rel=0.01)
+    # a streamlined body of revolution straight ahead: the flow at the wall runs aft almost everywhere
+    # (read with the opposite sign of the shear, this would be nearly 100 %)
+    assert flow["reversed_pct"] < 1.0
+
+
+def test_a_record_without_the_report_gets_it_from_the_saved_solution(straight):
+    from hydroderiv.case.setup import latest_time_dir
+    from hydroderiv.run.condition import add_reversed_flow, read_result
+
+    case, record, _, settings = straight
+    stripped = {k: v for k, v in record.items() if k != "reversed_flow"}  # as a run from before the report
+    (case / RESULT_FILE).write_text(json.dumps(stripped))
+    (latest_time_dir(case) / "wallShearStress").unlink()
+    try:
+        report = add_reversed_flow(case, settings)
+        assert (latest_time_dir(case) / "wallShearStress").is_file()  # post-processed from the solution
+        assert report["hull"]["area_m2"] == record["reversed_flow"]["hull"]["area_m2"]
+        assert report["hull"]["reversed_pct"] == pytest.approx(record["reversed_flow"]["hull"]["reversed_pct"], abs=0.05)
+        assert read_result(case)["reversed_flow"] == report and read_result(case)["coefficients"] == record["coefficients"]
+    finally:
+        (case / RESULT_FILE).write_text(json.dumps(record))

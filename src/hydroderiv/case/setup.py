@@ -18,6 +18,7 @@ import numpy as np
 
 from .._foam import quoted, write_decomposition, write_foam_dict
 from ..errors import ConfigurationError
+from ..forces.surface_flow import FIELD as WALL_SHEAR
 from ..mesh.snappy import FARFIELD, ROTATING_ZONE, WALL_GROUP
 from ..run.solver import STOP_FILE, TOTAL_FORCES, component_function_name
 from .conditions import Condition
@@ -87,6 +88,9 @@ def _write_control(case: Path, s: CaseSettings) -> None:
     if s.components:  # an empty domain (frame verification) has no body to integrate over
         functions[TOTAL_FORCES] = {**force_common, "patches": list(s.components)}
         functions["yPlus"] = {"type": "yPlus", "libs": [quoted("libfieldFunctionObjects.so")], "writeControl": "writeTime"}
+        # the direction of the flow at the wall, for the reversed-flow report (forces/surface_flow.py)
+        functions[WALL_SHEAR] = {"type": "wallShearStress", "libs": [quoted("libfieldFunctionObjects.so")],
+                                 "patches": list(s.components), "writeControl": "writeTime"}
     # Each forces function object evaluates the viscous stress over the whole mesh; per-component
     # breakdowns only need sampling, so they run every COMPONENT_INTERVAL iterations.
     for component in s.components:

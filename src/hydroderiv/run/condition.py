@@ -20,7 +20,10 @@ from .._io import atomic_write_text
 from ..case.conditions import Condition
 from ..case.numerics import has_second_order_convection
 from ..case.setup import CaseSettings, latest_time_dir, write_condition_case
+from ..errors import HydroderivError
 from ..forces import COEFFICIENT_NAMES, PrimeScales
+from ..forces.surface_flow import FIELD as WALL_SHEAR
+from ..forces.surface_flow import reversed_flow
 from .monitor import ConvergenceCriterion
 from .openfoam import openfoam_version_from_log, run_application
 from .solver import Progress, run_steady
@@ -44,6 +47,42 @@ def _yplus_summary(case: Path) -> dict:
             if len(words) >= 5:
                 out[words[1]] = {"min": float(words[2]), "max": float(words[3]), "mean": float(words[4])}
     return out
+
+
+def _reversed_flow(case: Path, condition: Condition, settings: CaseSettings) -> dict:
+    """Per body part, the share of its area with reversed flow at the wall (empty without a body).
+
+    A report, not a result: if it cannot be made, the message takes its place and the forces stand.
+    """
+    if not settings.components:
+        return {}
+    try:
+        return reversed_flow(latest_time_dir(case), case / "constant/polyMesh", settings.components,
+                             condition.inflow(), condition.angular_velocity(settings.length))
+    except (HydroderivError, OSError) as error:
+        return {"error": str(error)}
+
+
+def add_reversed_flow(case: str | Path, settings: CaseSettings) -> dict:
+    """The reversed-flow report of a finished condition, made now if its record has none (or an error).
+
+    Conditions run before the report existed have no wall shear stress: simpleFoam's post-processing
+    writes it from the saved solution (seconds). The record is rewritten atomically with the report added.
+    """
+    case = Path(case)
+    record = read_result(case)
+    if record is None:
+        raise HydroderivError(f"{case} has no finished result")
+    report = record.get("reversed_flow")
+    if report and "error" not in report:
+        return report
+    latest = latest_time_dir(case)
+    if latest is not None and not (latest / WALL_SHEAR).is_file():
+        run_application(case, ["simpleFoam", "-postProcess", "-func", WALL_SHEAR, "-latestTime"],
+                        log_name="wallShearStress")
+    record["reversed_flow"] = _reversed_flow(case, Condition(**record["condition"]), settings)
+    atomic_write_text(case / RESULT_FILE, json.dumps(record, indent=2) + "\n")
+    return record["reversed_flow"]
 
 
 def _resumable(case: Path, n_procs: int) -> bool:
@@ -116,6 +155,7 @@ def run_condition(
         "window_spread": np.ptp(window, axis=0).tolist(),
         "window_std": np.std(window, axis=0).tolist(),
         "yplus": _yplus_summary(case),
+        "reversed_flow": _reversed_flow(case, condition, settings),
         "reference": {"rho": settings.fluid.rho, "speed": condition.speed, "length": settings.length},
         "openfoam_version": openfoam_version_from_log((case / "log.simpleFoam").read_text(errors="replace")),
     }

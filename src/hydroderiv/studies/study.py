@@ -50,9 +50,10 @@ from ..case.frames import FRAME_METHODS
 from ..case.setup import CaseSettings, latest_time_dir
 from ..derivatives.fit import NONLINEAR_TERMS
 from ..errors import ConfigurationError, HydroderivError
+from ..forces.surface_flow import describe_reversed_flow
 from ..geometry import Body
 from ..mesh.design import mesh_options
-from ..run.condition import read_result, run_condition
+from ..run.condition import add_reversed_flow, read_result, run_condition
 from ..run.monitor import ConvergenceCriterion
 from ..run.solver import Progress
 from .workspace import Workspace, is_suboff
@@ -249,6 +250,9 @@ def run_study(
             finally:
                 running_marker(case).unlink(missing_ok=True)
             log(f"    {'converged' if done['converged'] else 'NOT converged'} in {done['iterations']} iterations, {done['wall_seconds']:.0f} s")
+            separation = describe_reversed_flow(done.get("reversed_flow", {}))
+            if separation:
+                log(f"    {separation}")
         else:
             log(f"[{number}/{len(order)}] {condition.name}: done")
         if _warm_start_candidate(study, condition):
@@ -261,3 +265,21 @@ def _warm_start_candidate(study: Study, condition: Condition) -> bool:
     # A classic turn starts from fluid at rest far away; the straight runs it shares hold the hybrid
     # inflow field, which would be a worse start than none.
     return study.method == "hybrid" or condition.is_turning
+
+
+def study_reversed_flow(study: Study, log: Callable[[str], None] = print) -> dict[str, dict]:
+    """The reversed-flow report of every finished condition, by name (see forces/surface_flow.py).
+
+    Conditions finished before the report existed get it now from their saved solution.
+    """
+    body = study.workspace.body(study.body, study.body_dir)
+    settings = study.case_settings(body)
+    reports = {}
+    for condition in run_order(study.conditions):
+        case = study.case_dir(condition)
+        if read_result(case) is None:
+            continue
+        if "reversed_flow" not in read_result(case):
+            log(f"  {condition.name}: wall shear stress from the saved solution ...")
+        reports[condition.name] = add_reversed_flow(case, settings)
+    return reports

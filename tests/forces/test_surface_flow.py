@@ -1,0 +1,106 @@
+"""The reversed-flow report on a hand-made mesh: face areas, the sign of the wall shear, the turning stream."""
+
+import numpy as np
+import pytest
+
+from hydroderiv.errors import HydroderivError
+from hydroderiv.forces.surface_flow import describe_reversed_flow, patch_faces, reversed_flow
+
+HEADER = "FoamFile\n{{\n    version 2.0;\n    format {fmt};\n    class {cls};\n    object {obj};\n}}\n"
+
+# a box x in [0, 2], y in [-1, 1], z in [0, 1]: faces 0-3 stand for the rest of the mesh; the walls are the
+# side at y = -1 (face 4) and the side at y = +1 (face 5), 2 m^2 each, and the nose x = 2 (face 6), 2 m^2
+POINTS = [(0, -1, 0), (2, -1, 0), (2, 1, 0), (0, 1, 0), (0, -1, 1), (2, -1, 1), (2, 1, 1), (0, 1, 1)]
+FACES = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 4, 7, 3), (0, 1, 5, 4), (0, 1, 5, 4), (3, 7, 6, 2), (1, 2, 6, 5)]
+
+
+def _mesh(tmp_path, fmt="ascii"):
+    mesh = tmp_path / "constant/polyMesh"
+    mesh.mkdir(parents=True)
+    (mesh / "points").write_text(HEADER.format(fmt=fmt, cls="vectorField", obj="points")
+                                 + f"\n{len(POINTS)}\n(\n" + "".join(f"({x} {y} {z})\n" for x, y, z in POINTS) + ")\n")
+    (mesh / "faces").write_text(HEADER.format(fmt="ascii", cls="faceList", obj="faces")
+                                + f"\n{len(FACES)}\n(\n" + "".join(f"4({' '.join(map(str, f))})\n" for f in FACES) + ")\n")
+    (mesh / "boundary").write_text(HEADER.format(fmt="ascii", cls="polyBoundaryMesh", obj="boundary") + """
+2
+(
+    sides
+    {
+        type            wall;
+        inGroups        1(wall);
+        nFaces          2;
+        startFace       4;
+    }
+    nose
+    {
+        type            wall;
+        nFaces          1;
+        startFace       6;
+    }
+)
+""")
+    return mesh
+
+
+def _shear(tmp_path, sides, nose):
+    def values(vectors):
+        return f"nonuniform List<vector> {len(vectors)}(" + " ".join(f"({a} {b} {c})" for a, b, c in vectors) + ")"
+
+    time_dir = tmp_path / "100"
+    time_dir.mkdir()
+    (time_dir / "wallShearStress").write_text(HEADER.format(fmt="ascii", cls="volVectorField", obj="wallShearStress") + f"""
+dimensions      [0 2 -2 0 0 0 0];
+internalField   uniform (0 0 0);
+boundaryField
+{{
+    sides {{ type calculated; value {values(sides)}; }}
+    nose {{ type calculated; value {values(nose)}; }}
+}}
+""")
+    return time_dir
+
+
+def test_face_areas_and_centres_come_from_the_patch_faces(tmp_path):
+    faces = patch_faces(_mesh(tmp_path), ["sides", "nose"])
+    centres, areas = faces["sides"]
+    assert np.allclose(centres, [[1, -1, 0.5], [1, 1, 0.5]])
+    assert np.allclose(np.linalg.norm(areas, axis=1), [2.0, 2.0])
+    assert np.allclose(np.abs(areas[:, 1]), [2.0, 2.0])  # normal to y
+    assert np.allclose(faces["nose"][0], [[2, 0, 0.5]])
+
+
+def test_shear_against_the_stream_is_attached_flow_and_along_it_reversed(tmp_path):
+    mesh = _mesh(tmp_path)
+    # the stream runs aft (-x); attached flow at the wall runs aft too, so the wall's stress on the fluid
+    # points forward (+x). One side attached, the other running forward; the nose attached.
+    time_dir = _shear(tmp_path, sides=[(0.5, 0, 0), (-0.2, 0.1, 0)], nose=[(0, 0.3, 0)])
+    report = reversed_flow(time_dir, mesh, ["sides", "nose"], inflow=np.array([-3.0, 0.0, 0.0]))
+    assert report["sides"] == {"area_m2": 4.0, "reversed_pct": 50.0}
+    assert report["nose"]["reversed_pct"] == 0.0  # a shear across the stream is not reversed flow
+    assert "sides 50.0 %" in describe_reversed_flow(report)
+    assert "nose" not in describe_reversed_flow(report)
+
+
+def test_in_a_turn_each_face_is_judged_against_its_own_stream(tmp_path):
+    mesh = _mesh(tmp_path)
+    # Omega = (0, 0, 2) rad/s: the stream U_inf - Omega x r is -3 + 2*1 = -1 m/s at y = +1 but
+    # -3 - 2 = -5 m/s at y = -1, so both still run aft; at 4 rad/s the one at y = +1 runs forward (+1 m/s).
+    time_dir = _shear(tmp_path, sides=[(0.5, 0, 0), (0.5, 0, 0)], nose=[(0.5, 0, 0)])
+    inflow = np.array([-3.0, 0.0, 0.0])
+    slow = reversed_flow(time_dir, mesh, ["sides"], inflow, angular_velocity=np.array([0.0, 0.0, 2.0]))
+    fast = reversed_flow(time_dir, mesh, ["sides"], inflow, angular_velocity=np.array([0.0, 0.0, 4.0]))
+    assert slow["sides"]["reversed_pct"] == 0.0
+    assert fast["sides"]["reversed_pct"] == 50.0
+
+
+def test_missing_field_unknown_patch_and_binary_mesh_are_named(tmp_path):
+    mesh = _mesh(tmp_path)
+    with pytest.raises(HydroderivError, match="wallShearStress is missing"):
+        reversed_flow(tmp_path, mesh, ["sides"], np.array([-1.0, 0, 0]))
+    with pytest.raises(HydroderivError, match="no patch 'sail'"):
+        patch_faces(mesh, ["sail"])
+    binary = _mesh(tmp_path / "binary", fmt="binary")
+    with pytest.raises(HydroderivError, match="binary"):
+        patch_faces(binary, ["sides"])
+    assert describe_reversed_flow({"error": "boom"}) == "reversed flow not reported: boom"
+    assert describe_reversed_flow({"hull": {"area_m2": 6.0, "reversed_pct": 0.2}}) is None
