@@ -30,3 +30,38 @@ def test_the_convection_order_is_read_back_from_the_case(tmp_path):
     assert not has_second_order_convection(tmp_path)
     write_numerics(tmp_path, second_order=True)
     assert has_second_order_convection(tmp_path)
+
+
+def test_a_k_epsilon_model_gets_epsilon_from_the_same_free_stream_and_its_own_wall_function(tmp_path):
+    from foamlib import FoamFile
+
+    from hydroderiv.case import Condition
+    from hydroderiv.case.fluid import C_MU, FreestreamTurbulence
+    from hydroderiv.case.setup import CaseSettings, write_condition_case
+
+    mesh = tmp_path / "mesh"
+    (mesh / "constant/polyMesh").mkdir(parents=True)
+    condition, nu = Condition(speed=3.344), 0.001053 / 998.55
+    cases = {}
+    for model in ("kOmegaSST", "ShihQuadraticKE"):
+        settings = CaseSettings(length=4.261, components=("hull",), turbulence_model=model)
+        cases[model] = write_condition_case(tmp_path / model, mesh, condition, settings)
+        with FoamFile(cases[model] / "constant/turbulenceProperties") as f:
+            assert f["RAS"]["RASModel"] == model
+    assert (cases["kOmegaSST"] / "0/omega").is_file() and not (cases["kOmegaSST"] / "0/epsilon").exists()
+    assert (cases["ShihQuadraticKE"] / "0/epsilon").is_file() and not (cases["ShihQuadraticKE"] / "0/omega").exists()
+    with FoamFile(cases["ShihQuadraticKE"] / "0/epsilon") as f:
+        free = FreestreamTurbulence()
+        # the same free-stream turbulence, in the other variable: epsilon = C_mu k omega
+        expected = C_MU * free.k(3.344) * free.omega(3.344, nu)
+        assert f["boundaryField"]["farfield"]["inletValue"] == pytest.approx(expected, rel=1e-6)
+        assert f["boundaryField"]["bodyWalls"]["type"] == "epsilonWallFunction"
+        assert f["internalField"] == pytest.approx(expected, rel=1e-6)
+
+
+def test_an_unknown_turbulence_model_is_named():
+    from hydroderiv.case.setup import CaseSettings
+    from hydroderiv.errors import ConfigurationError
+
+    with pytest.raises(ConfigurationError, match="unknown turbulence model 'kEpsilonQCR'"):
+        CaseSettings(length=4.261, components=(), turbulence_model="kEpsilonQCR")

@@ -67,6 +67,7 @@ def test_run_order_starts_straight_and_moves_outward():
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nspeed_kn = 6'), r"unknown \[study\] key\(s\) speed_kn"),
         (GOOD + '\n[fit]\nnonlinear = "quadratic"\n', "unknown nonlinear term 'quadratic'"),
         (GOOD + "\n[fit]\nslope_only = true\n", r"unknown \[fit\] keys slope_only"),
+        (GOOD.replace('level = "coarse"', 'level = "coarse"\nturbulence_model = "kEpsilonQCR"'), "unknown turbulence model"),
         ("[study\nbody=", "not valid TOML"),
     ],
 )
@@ -147,3 +148,13 @@ def test_the_mesh_table_sets_mesh_options_for_every_condition(tmp_path):
     assert dict(study.workspace.mesh_options) == dict(study.mesh_options)
     with pytest.raises(ConfigurationError, match="unknown mesh option 'layers'"):
         Study.load(write(tmp_path, GOOD + "\n[mesh]\nlayers = 3\n"))
+
+
+def test_another_turbulence_model_keeps_its_conditions_apart_on_the_same_mesh(tmp_path):
+    sst = Study.load(write(tmp_path, GOOD))
+    shih = Study.load(write(tmp_path, GOOD.replace('level = "coarse"', 'level = "coarse"\nturbulence_model = "ShihQuadraticKE"')))
+    straight = Condition(sst.speed)
+    assert shih.workspace.mesh_dir == sst.workspace.mesh_dir  # one mesh
+    assert shih.case_dir(straight).parent.name == "conditions-ShihQuadraticKE"
+    assert sst.case_dir(straight).parent.name == "conditions"
+    assert shih.case_settings(shih.workspace.body("AFF-1")).turbulence_model == "ShihQuadraticKE"

@@ -1,4 +1,4 @@
-"""The fluid and the free-stream turbulence."""
+"""The fluid, the free-stream turbulence and the RANS turbulence models on offer."""
 
 from __future__ import annotations
 
@@ -29,3 +29,24 @@ class FreestreamTurbulence:
 
     def omega(self, speed: float, nu: float) -> float:
         return self.k(speed) / (nu * self.viscosity_ratio)
+
+    def epsilon(self, speed: float, nu: float) -> float:
+        return C_MU * self.k(speed) * self.omega(speed, nu)
+
+
+# RAS models on offer, each with the variable it transports besides k. All use wall functions (y+ about 50).
+# k-omega SST is the default (the seed paper's model). Shih's quadratic k-epsilon adds stresses quadratic in
+# the mean strain and rotation: a linear eddy viscosity cannot drive the secondary flow that keeps a
+# junction's corner attached, and SST separated the suction-side corners at the sail's and rudders' trailing
+# edges (issue-4 notes, 2026-11-30).
+TURBULENCE_MODELS = {"kOmegaSST": "omega", "ShihQuadraticKE": "epsilon", "realizableKE": "epsilon"}
+DEFAULT_TURBULENCE_MODEL = "kOmegaSST"
+C_MU = 0.09  # epsilon = C_mu k omega
+
+
+def check_turbulence_model(name: str) -> str:
+    from ..errors import ConfigurationError
+
+    if name not in TURBULENCE_MODELS:
+        raise ConfigurationError(f"unknown turbulence model {name!r}; choose one of {', '.join(TURBULENCE_MODELS)}")
+    return name

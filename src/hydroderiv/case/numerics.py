@@ -1,4 +1,8 @@
-"""Discretisation and solver settings of the steady RANS runs (simpleFoam, k-omega SST)."""
+"""Discretisation and solver settings of the steady RANS runs (simpleFoam).
+
+The entries cover every model of hydroderiv.case.fluid.TURBULENCE_MODELS; OpenFOAM ignores those a model
+does not read, so a mesh case and a condition case share one set.
+"""
 
 from __future__ import annotations
 
@@ -23,12 +27,15 @@ def write_numerics(case: Path, second_order: bool = True) -> None:
                 "grad(U)": "cellLimited Gauss linear 1",
                 "grad(k)": "cellLimited Gauss linear 1",
                 "grad(omega)": "cellLimited Gauss linear 1",
+                "grad(epsilon)": "cellLimited Gauss linear 1",
             },
             "divSchemes": {
                 "default": "none",
                 "div(phi,U)": convection.format("U"),
                 "div(phi,k)": convection.format("k"),
                 "div(phi,omega)": convection.format("omega"),
+                "div(phi,epsilon)": convection.format("epsilon"),
+                "div(nonlinearStress)": "Gauss linear",  # the quadratic stresses of ShihQuadraticKE
                 "div((nuEff*dev2(T(grad(U)))))": "Gauss linear",
             },
             "laplacianSchemes": {"default": "Gauss linear limited corrected 0.33"},
@@ -42,10 +49,10 @@ def write_numerics(case: Path, second_order: bool = True) -> None:
         {
             "solvers": {
                 "p": {"solver": "GAMG", "smoother": "GaussSeidel", "tolerance": 1e-7, "relTol": 0.05},
-                '"(U|k|omega)"': {"solver": "smoothSolver", "smoother": "symGaussSeidel", "tolerance": 1e-8, "relTol": 0.1},
+                '"(U|k|omega|epsilon)"': {"solver": "smoothSolver", "smoother": "symGaussSeidel", "tolerance": 1e-8, "relTol": 0.1},
             },
             "SIMPLE": {"nNonOrthogonalCorrectors": 0, "consistent": False},
-            "relaxationFactors": {"fields": {"p": 0.3}, "equations": {"U": 0.7, "k": 0.6, "omega": 0.6}},
+            "relaxationFactors": {"fields": {"p": 0.3}, "equations": {"U": 0.7, "k": 0.6, "omega": 0.6, "epsilon": 0.6}},
         },
     )
 

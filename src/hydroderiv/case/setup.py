@@ -22,7 +22,7 @@ from ..forces.surface_flow import FIELD as WALL_SHEAR
 from ..mesh.snappy import FARFIELD, ROTATING_ZONE, WALL_GROUP
 from ..run.solver import STOP_FILE, TOTAL_FORCES, component_function_name
 from .conditions import Condition
-from .fluid import Fluid, FreestreamTurbulence
+from .fluid import DEFAULT_TURBULENCE_MODEL, TURBULENCE_MODELS, Fluid, FreestreamTurbulence, check_turbulence_model
 from .frames import FRAME_METHODS, FrameSetup, frame_setup
 from .numerics import write_numerics
 from .warm_start import take_internal_field
@@ -48,6 +48,7 @@ class CaseSettings:
     # first-order iterations the same mesh and condition ran on with k below 0.2 m2/s2.
     first_order_start: int = 80
     method: str = "hybrid"  # frame method, see hydroderiv.case.frames
+    turbulence_model: str = DEFAULT_TURBULENCE_MODEL  # see hydroderiv.case.fluid.TURBULENCE_MODELS
 
     def second_order_from(self, warm_start: Path | None) -> int | None:
         """The iteration at which second-order convection starts, or None if the case starts with it."""
@@ -58,6 +59,7 @@ class CaseSettings:
     def __post_init__(self):
         if self.method not in FRAME_METHODS:
             raise ConfigurationError(f"unknown frame method {self.method!r}; choose one of {', '.join(FRAME_METHODS)}")
+        check_turbulence_model(self.turbulence_model)
 
 
 def _vector(v) -> list[float]:
@@ -135,7 +137,7 @@ def _write_physics(case: Path, frame: FrameSetup, s: CaseSettings) -> None:
     write_foam_dict(case / "constant/transportProperties", {"transportModel": "Newtonian", "nu": s.fluid.nu})
     write_foam_dict(
         case / "constant/turbulenceProperties",
-        {"simulationType": "RAS", "RAS": {"RASModel": "kOmegaSST", "turbulence": True, "printCoeffs": True}},
+        {"simulationType": "RAS", "RAS": {"RASModel": s.turbulence_model, "turbulence": True, "printCoeffs": True}},
     )
     magnitude = float(np.linalg.norm(frame.omega))
     # hybrid: the sphere rotates about B and the far field outside it is inertial; classic: every cell
@@ -171,7 +173,7 @@ def _write_physics(case: Path, frame: FrameSetup, s: CaseSettings) -> None:
 
 
 def _transported_turbulence(dimensions: str, value: float, wall_function: str) -> dict:
-    """k or omega: the free-stream value where the far field flows in, a wall function on the body."""
+    """k, omega or epsilon: the free-stream value where the far field flows in, a wall function on the body."""
     return {
         "class": "volScalarField",
         "dimensions": dimensions,
@@ -185,7 +187,10 @@ def _fields(condition: Condition, frame: FrameSetup, s: CaseSettings) -> dict[st
     # Field files: foamlib writes a plain value of a field entry as 'uniform <value>'.
     inflow = _vector(frame.farfield_velocity)
     k = s.turbulence.k(condition.speed)
-    omega = s.turbulence.omega(condition.speed, s.fluid.nu)
+    scale_variable = TURBULENCE_MODELS[s.turbulence_model]  # omega or epsilon
+    scale = getattr(s.turbulence, scale_variable)(condition.speed, s.fluid.nu)
+    scale_field = {"omega": ("[0 0 -1 0 0 0 0]", "omegaWallFunction"),
+                   "epsilon": ("[0 2 -3 0 0 0 0]", "epsilonWallFunction")}[scale_variable]
     if frame.whole_domain_rotates:
         # Fluid at rest far away: an open boundary at zero total pressure that lets the body's displacement
         # flow in and out. (freestreamVelocity divides by the free-stream speed, which is zero here.)
@@ -210,7 +215,7 @@ def _fields(condition: Condition, frame: FrameSetup, s: CaseSettings) -> dict[st
             "wall": {"type": "zeroGradient"},
         },
         "k": _transported_turbulence("[0 2 -2 0 0 0 0]", k, "kqRWallFunction"),
-        "omega": _transported_turbulence("[0 0 -1 0 0 0 0]", omega, "omegaWallFunction"),
+        scale_variable: _transported_turbulence(scale_field[0], scale, scale_field[1]),
         "nut": {
             "class": "volScalarField",
             "dimensions": "[0 2 -1 0 0 0 0]",

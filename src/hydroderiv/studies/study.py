@@ -9,6 +9,7 @@ Example::
     n_procs = 2
     work = "runs/aff8-coarse" # optional; default: runs/<file stem>
     method = "hybrid"         # optional: "hybrid" (default) or "classic" (whole domain rotates, for verification)
+    turbulence_model = "kOmegaSST"  # optional: or "ShihQuadraticKE", "realizableKE" (case/fluid.py)
 
     [sweeps]                  # one variable at a time about straight-ahead
     drift_deg = [-8, -4, 4, 8]
@@ -46,6 +47,7 @@ import numpy as np
 from .._io import atomic_write_text
 from ..case import KNOT, Condition
 from ..case.conditions import SWEEP_KEYS
+from ..case.fluid import DEFAULT_TURBULENCE_MODEL, check_turbulence_model
 from ..case.frames import FRAME_METHODS
 from ..case.setup import CaseSettings, latest_time_dir
 from ..derivatives.fit import NONLINEAR_TERMS
@@ -59,7 +61,7 @@ from ..run.solver import Progress
 from .workspace import Workspace, is_suboff
 
 FAILED_FILE = "failed.json"
-STUDY_KEYS = {"body", "body_dir", "level", "speed", "speed_knots", "n_procs", "work", "method"}
+STUDY_KEYS = {"body", "body_dir", "level", "speed", "speed_knots", "n_procs", "work", "method", "turbulence_model"}
 
 
 def running_marker(case: Path) -> Path:
@@ -80,6 +82,7 @@ class Study:
     conditions: tuple[Condition, ...]
     criterion: ConvergenceCriterion = field(default_factory=ConvergenceCriterion)
     method: str = "hybrid"
+    turbulence_model: str = DEFAULT_TURBULENCE_MODEL
     nonlinear: str = "abs"  # the derivative fit's nonlinear term
     fit_offset: bool = True
     mesh_options: tuple[tuple[str, float], ...] = ()  # the [mesh] table: MeshDesign fields, as (name, value)
@@ -143,6 +146,7 @@ class Study:
             conditions=unique,
             criterion=ConvergenceCriterion(**conv),
             method=method,
+            turbulence_model=check_turbulence_model(head.get("turbulence_model", DEFAULT_TURBULENCE_MODEL)),
             nonlinear=nonlinear,
             fit_offset=bool(fit.get("offset", True)),
             mesh_options=tuple(sorted(mesh_options(data.get("mesh", {}), str(path)).items())),
@@ -150,12 +154,13 @@ class Study:
 
     @property
     def workspace(self) -> Workspace:
-        return Workspace(self.work, self.level, self.method, self.mesh_options)
+        return Workspace(self.work, self.level, self.method, self.mesh_options, self.turbulence_model)
 
     def case_settings(self, body: Body) -> CaseSettings:
         """What every condition of this study needs besides the condition itself."""
         return CaseSettings(length=body.reference.length, components=body.component_names, n_procs=self.n_procs,
-                            max_iterations=self.criterion.max_iterations, method=self.method)
+                            max_iterations=self.criterion.max_iterations, method=self.method,
+                            turbulence_model=self.turbulence_model)
 
     def case_dir(self, condition: Condition) -> Path:
         """Where ``condition`` runs. Without rotation both frame methods are the same translation, so a

@@ -5,6 +5,9 @@
     <work>/conditions/<name>/   one case per condition, result.json when finished
     <work>/conditions-classic/  the same for the classic frame method (never warm-started from hybrid
                                 solutions: the two solve for velocities in different frames)
+    <work>/conditions-<model>/  the same with another turbulence model than k-omega SST (their fields
+                                differ, and a finished result must never stand for another model's);
+                                conditions-classic-<model>/ for both
 """
 
 from __future__ import annotations
@@ -13,6 +16,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Callable
 
+from ..case.fluid import DEFAULT_TURBULENCE_MODEL
 from ..geometry import Body, suboff_body
 from ..geometry.body import REFERENCE_FILE
 from ..geometry.suboff import CONFIGURATIONS
@@ -25,6 +29,7 @@ class Workspace:
     level: str
     method: str = "hybrid"
     mesh_options: tuple[tuple[str, float], ...] = ()  # MeshDesign fields set by the user, as (name, value)
+    turbulence_model: str = DEFAULT_TURBULENCE_MODEL
 
     @property
     def geometry_dir(self) -> Path:
@@ -35,7 +40,8 @@ class Workspace:
         return self.root / f"mesh-{self.level}"
 
     def condition_dir(self, name: str) -> Path:
-        folder = "conditions" if self.method == "hybrid" else f"conditions-{self.method}"
+        folder = "conditions" + (f"-{self.method}" if self.method != "hybrid" else "") + (
+            f"-{self.turbulence_model}" if self.turbulence_model != DEFAULT_TURBULENCE_MODEL else "")
         return self.root / folder / name
 
     def body(self, config: str | None = None, body_dir: str | Path | None = None) -> Body:
