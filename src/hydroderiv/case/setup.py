@@ -90,9 +90,11 @@ def _write_control(case: Path, s: CaseSettings) -> None:
     if s.components:  # an empty domain (frame verification) has no body to integrate over
         functions[TOTAL_FORCES] = {**force_common, "patches": list(s.components)}
         functions["yPlus"] = {"type": "yPlus", "libs": [quoted("libfieldFunctionObjects.so")], "writeControl": "writeTime"}
-        # the direction of the flow at the wall, for the reversed-flow report (forces/surface_flow.py)
+        # the direction of the flow at the wall, for the reversed-flow report (forces/surface_flow.py);
+        # evaluated only when written: it builds the stress tensor over the whole mesh
         functions[WALL_SHEAR] = {"type": "wallShearStress", "libs": [quoted("libfieldFunctionObjects.so")],
-                                 "patches": list(s.components), "writeControl": "writeTime"}
+                                 "patches": list(s.components), "executeControl": "writeTime",
+                                 "writeControl": "writeTime"}
     # Each forces function object evaluates the viscous stress over the whole mesh; per-component
     # breakdowns only need sampling, so they run every COMPONENT_INTERVAL iterations.
     for component in s.components:
