@@ -127,3 +127,23 @@ def test_a_record_without_the_report_gets_it_from_the_saved_solution(straight):
         assert read_result(case)["reversed_flow"] == report and read_result(case)["coefficients"] == record["coefficients"]
     finally:
         (case / RESULT_FILE).write_text(json.dumps(record))
+
+
+@pytest.fixture(scope="module")
+def straight_quadratic(coarse_bare_hull, tmp_path_factory):
+    """The same run with Shih's quadratic k-epsilon model (epsilon, its wall function, nonlinear stresses)."""
+    mesh_case, _ = coarse_bare_hull
+    case = tmp_path_factory.mktemp("run") / "straight-shih"
+    settings = CaseSettings(length=4.261, components=("hull",), n_procs=2, max_iterations=600,
+                            turbulence_model="ShihQuadraticKE")
+    return run_condition(case, mesh_case, Condition(speed=3.344), settings, ConvergenceCriterion(min_iterations=120))
+
+
+def test_the_quadratic_model_converges_to_a_drag_like_the_default_models(straight, straight_quadratic):
+    _, sst, _, _ = straight
+    drag, drag_sst = -straight_quadratic["force_N"][0], -sst["force_N"][0]
+    assert straight_quadratic["converged"]
+    # the friction of a streamlined hull hardly depends on the wall-function model: within 15 % of SST's
+    assert drag == pytest.approx(drag_sst, rel=0.15)
+    assert abs(straight_quadratic["force_N"][1]) < 0.01 * drag and abs(straight_quadratic["force_N"][2]) < 0.01 * drag
+    assert straight_quadratic["reversed_flow"]["hull"]["reversed_pct"] < 1.0
