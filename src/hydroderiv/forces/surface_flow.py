@@ -20,19 +20,9 @@ import numpy as np
 from foamlib import FoamFieldFile
 
 from ..errors import HydroderivError
+from ..mesh.quality import read_points, require_ascii
 
 FIELD = "wallShearStress"  # written by OpenFOAM's wallShearStress function object (see case/setup.py)
-
-
-def _after_header(text: str) -> str:
-    """The body of an OpenFOAM file, after its FoamFile dictionary."""
-    return text[text.index("}", text.index("FoamFile")) + 1 :]
-
-
-def _require_ascii(text: str, path: Path) -> None:
-    match = re.search(r"format\s+(\w+)\s*;", text)
-    if match and match.group(1) != "ascii":
-        raise HydroderivError(f"{path} is written in {match.group(1)}; the reversed-flow report reads ascii meshes only")
 
 
 def patch_faces(mesh_dir: str | Path, patches: tuple[str, ...] | list[str]) -> dict[str, tuple[np.ndarray, np.ndarray]]:
@@ -51,12 +41,7 @@ def patch_faces(mesh_dir: str | Path, patches: tuple[str, ...] | list[str]) -> d
         entries = dict(re.findall(r"(\w+)\s+([^;]+);", block.group(1)))
         ranges[patch] = (int(entries["startFace"]), int(entries["nFaces"]))
 
-    points_text = (mesh_dir / "points").read_text()
-    _require_ascii(points_text, mesh_dir / "points")
-    body = _after_header(points_text)
-    count = re.search(r"(\d+)\s*\(", body)
-    values = body[count.end() :].translate(str.maketrans("()", "  ")).split()
-    points = np.array(values[: 3 * int(count.group(1))], dtype=float).reshape(-1, 3)
+    points = read_points(mesh_dir)
 
     wanted = sorted((start, n, patch) for patch, (start, n) in ranges.items())
     faces: dict[str, list[list[int]]] = {patch: [] for patch in patches}
@@ -66,7 +51,7 @@ def patch_faces(mesh_dir: str | Path, patches: tuple[str, ...] | list[str]) -> d
             header += line
             if line.strip() == "(":
                 break
-        _require_ascii(header, mesh_dir / "faces")
+        require_ascii(header, mesh_dir / "faces")
         index, k = 0, 0
         for line in stream:
             if k == len(wanted):

@@ -87,17 +87,34 @@ def _poly_list(path: Path) -> str:
     return text[body_start:]
 
 
+def require_ascii(header: str, path: Path) -> None:
+    """Raise if an OpenFOAM file's header says it is not ascii (the mesh readers here parse text only)."""
+    match = re.search(r"format\s+(\w+)\s*;", header)
+    if match and match.group(1) != "ascii":
+        raise HydroderivError(f"{path} is written in {match.group(1)}; only ascii meshes can be read here")
+
+
+def read_points(mesh_dir: Path) -> np.ndarray:
+    """The points of an ascii polyMesh, (n, 3) in metres."""
+    path = Path(mesh_dir) / "points"
+    text = path.read_text()
+    header_end = text.index("}", text.index("FoamFile")) + 1
+    require_ascii(text[:header_end], path)
+    count = re.search(r"(\d+)\s*\(", text[header_end:])
+    values = text[header_end + count.end() :].translate(str.maketrans("()", "  ")).split()
+    return np.array(values[: 3 * int(count.group(1))], dtype=float).reshape(-1, 3)
+
+
 def sphere_interface_spread(case: Path, radius: float, zone: str = "rotatingZone") -> dict:
     """How far the faces of the rotating zone's faceZone lie from the true sphere (face-centre radii)."""
     mesh = Path(case) / "constant/polyMesh"
     try:
-        points = np.array(re.findall(r"\(([^()]+)\)", _poly_list(mesh / "points")), dtype=object)
-        points = np.array([p.split() for p in points], dtype=float)
+        points = read_points(mesh)
         faces = re.findall(r"\d+\(([\d ]+)\)", _poly_list(mesh / "faces"))
         zones = (mesh / "faceZones").read_text()
         match = re.search(rf"{zone}\s*\{{.*?faceLabels\s+List<label>\s+(\d+)\s*\((.*?)\)", zones, re.S)
         labels = np.array(match.group(2).split(), dtype=int)
-    except (FileNotFoundError, ValueError, AttributeError):
+    except (FileNotFoundError, ValueError, AttributeError, HydroderivError):
         return {}
     centres = np.array([points[np.array(faces[i].split(), dtype=int)].mean(axis=0) for i in labels])
     r = np.linalg.norm(centres, axis=1)

@@ -63,14 +63,15 @@ def _reversed_flow(case: Path, condition: Condition, settings: CaseSettings) -> 
         return {"error": str(error)}
 
 
-def add_reversed_flow(case: str | Path, settings: CaseSettings) -> dict:
+def add_reversed_flow(case: str | Path, settings: CaseSettings, record: dict | None = None) -> dict:
     """The reversed-flow report of a finished condition, made now if its record has none (or an error).
 
     Conditions run before the report existed have no wall shear stress: simpleFoam's post-processing
     writes it from the saved solution (seconds). The record is rewritten atomically with the report added.
+    ``record`` is the condition's result when the caller has read it already.
     """
     case = Path(case)
-    record = read_result(case)
+    record = record if record is not None else read_result(case)
     if record is None:
         raise HydroderivError(f"{case} has no finished result")
     report = record.get("reversed_flow")

@@ -282,9 +282,10 @@ def study_reversed_flow(study: Study, log: Callable[[str], None] = print) -> dic
     reports = {}
     for condition in run_order(study.conditions):
         case = study.case_dir(condition)
-        if read_result(case) is None:
+        record = read_result(case)
+        if record is None:
             continue
-        if "reversed_flow" not in read_result(case):
+        if "reversed_flow" not in record:
             log(f"  {condition.name}: wall shear stress from the saved solution ...")
-        reports[condition.name] = add_reversed_flow(case, settings)
+        reports[condition.name] = add_reversed_flow(case, settings, record)
     return reports
