@@ -99,7 +99,8 @@ def _mesh(args: argparse.Namespace) -> int:
     for patch, cover in report["layer_coverage"].items():
         table.add_row(f"layers on {patch}", f"{cover['any_layer_pct']}% any, {cover['all_layers_pct']}% all, mean {cover['mean_layers']}")
     sphere = report["rotating_sphere"]
-    table.add_row("rotating sphere", f"R = {sphere['radius_m']:.3f} m, faceZone max deviation {sphere.get('max_deviation_pct_of_radius')} % of R")
+    table.add_row("rotating sphere", f"R = {sphere['radius_m']:.3f} m, interface faces off the sphere by at most "
+                  f"{sphere.get('max_deviation_pct_of_radius')} % of R, tilted by at most {sphere.get('tilt_deg_max')} deg")
     console.print(table)
     return 0
 

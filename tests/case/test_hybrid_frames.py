@@ -54,10 +54,18 @@ def _deviation(mesh_case, case_dir, source_active: bool):
 def test_uniform_flow_stays_uniform_with_turn_drift_and_pitch(empty_domain, tmp_path):
     core, sphere = _deviation(empty_domain, tmp_path / "hybrid", source_active=True)
     assert core < 0.005
-    # Measured here: 2.6 % at most, in the cells next to the interface (r = 8.4-8.7 m), where the facets
-    # of the snapped sphere are not quite tangent to Omega x r (|Omega x r| = 0.6 U there). The issue's
-    # target is 1 % over the whole sphere; a finer interface is the open follow-up.
-    assert sphere < 0.03
+    # The target: 1 % of U over the whole sphere. Measured here: 0.06 %, largest next to the
+    # interface, where |Omega x r| = 0.6 U. With the interface as snapped (faces tilted by up to 21
+    # degrees from the sphere) it was 2.6 %: the test below shows that this bound can fail.
+    assert sphere < 0.01
+
+
+def test_an_interface_left_as_snapped_disturbs_uniform_flow(tmp_path_factory, openfoam):
+    case = tmp_path_factory.mktemp("snapped") / "domain"
+    build_empty_domain(case, MeshDesign("coarse", L, 0.254, -2.343, 2.013, interface_on_sphere=False),
+                       log=lambda m: None)
+    _, sphere = _deviation(case, tmp_path_factory.mktemp("snapped-run") / "hybrid", source_active=True)
+    assert sphere > 0.01
 
 
 def test_without_the_source_the_stream_is_deflected(empty_domain, tmp_path):

@@ -79,6 +79,10 @@ def test_mesh_options_are_checked_and_named(tmp_path):
         mesh_options({"sphere_radius_L": "large"})
     with pytest.raises(ConfigurationError, match="unknown mesh option 'length'"):
         mesh_options({"length": 5.0})  # set by the body, not by the user
+    assert mesh_options({"interface_on_sphere": "false"}) == {"interface_on_sphere": False}  # --mesh KEY=VALUE
+    assert mesh_options({"interface_on_sphere": True}) == {"interface_on_sphere": True}  # a TOML boolean
+    with pytest.raises(ConfigurationError, match="interface_on_sphere = 'maybe' must be true or false"):
+        mesh_options({"interface_on_sphere": "maybe"})
 
 
 def test_a_mesh_built_to_another_design_is_not_reused_silently(tmp_path):
@@ -95,5 +99,9 @@ def test_a_mesh_built_to_another_design_is_not_reused_silently(tmp_path):
     (case / REPORT_FILE).write_text(json.dumps({"cells": 1000, "design": {"appendage_extra_level": 1}}))
     with pytest.raises(ConfigurationError, match=r"appendage_extra_level 1 \(asked 2\)"):
         build_mesh(body, "coarse", case, log=lambda m: None)
-    reused = build_mesh(body, "coarse", case, log=lambda m: None, options={"appendage_extra_level": 1})
+    # its report predates interface_on_sphere, so it was built with the interface as snapped
+    with pytest.raises(ConfigurationError, match=r"interface_on_sphere False \(asked True\)"):
+        build_mesh(body, "coarse", case, log=lambda m: None, options={"appendage_extra_level": 1})
+    reused = build_mesh(body, "coarse", case, log=lambda m: None,
+                        options={"appendage_extra_level": 1, "interface_on_sphere": False})
     assert reused["cells"] == 1000

@@ -20,7 +20,7 @@ import numpy as np
 from foamlib import FoamFieldFile
 
 from ..errors import HydroderivError
-from ..mesh.quality import read_points, require_ascii
+from ..mesh.quality import face_geometry, read_points, require_ascii
 
 FIELD = "wallShearStress"  # written by OpenFOAM's wallShearStress function object (see case/setup.py)
 
@@ -68,13 +68,9 @@ def patch_faces(mesh_dir: str | Path, patches: tuple[str, ...] | list[str]) -> d
     for patch in patches:
         centres, areas = [], []
         for face in faces[patch]:
-            corners = points[face]
-            middle = corners.mean(axis=0)
-            # the sum of the triangles fanned about the mean point: exact for planar faces, and the
-            # definition OpenFOAM itself uses for warped ones
-            fan = np.cross(corners - middle, np.roll(corners, -1, axis=0) - middle)
-            areas.append(0.5 * fan.sum(axis=0))
-            centres.append(middle)
+            centre, area = face_geometry(points, np.asarray(face))
+            centres.append(centre)
+            areas.append(area)
         out[patch] = (np.array(centres).reshape(-1, 3), np.array(areas).reshape(-1, 3))
     return out
 

@@ -1,4 +1,4 @@
-"""Mesh quality: the checkMesh gate, prism-layer coverage and the snapped sphere interface."""
+"""Mesh quality: the checkMesh gate and prism-layer coverage; the ascii polyMesh readers and face geometry."""
 
 from __future__ import annotations
 
@@ -81,10 +81,12 @@ def layer_coverage(case: Path, layers_wanted: dict[str, int]) -> dict:
     return out
 
 
-def _poly_list(path: Path) -> str:
+def poly_list(path: Path) -> str:
+    """The text of an ascii polyMesh list file (faces, owner, ...) from its opening parenthesis on."""
     text = path.read_text()
-    body_start = text.index("(", text.index("}", text.index("FoamFile")))
-    return text[body_start:]
+    header_end = text.index("}", text.index("FoamFile")) + 1
+    require_ascii(text[:header_end], path)
+    return text[text.index("(", header_end):]
 
 
 def require_ascii(header: str, path: Path) -> None:
@@ -105,22 +107,16 @@ def read_points(mesh_dir: Path) -> np.ndarray:
     return np.array(values[: 3 * int(count.group(1))], dtype=float).reshape(-1, 3)
 
 
-def sphere_interface_spread(case: Path, radius: float, zone: str = "rotatingZone") -> dict:
-    """How far the faces of the rotating zone's faceZone lie from the true sphere (face-centre radii)."""
-    mesh = Path(case) / "constant/polyMesh"
-    try:
-        points = read_points(mesh)
-        faces = re.findall(r"\d+\(([\d ]+)\)", _poly_list(mesh / "faces"))
-        zones = (mesh / "faceZones").read_text()
-        match = re.search(rf"{zone}\s*\{{.*?faceLabels\s+List<label>\s+(\d+)\s*\((.*?)\)", zones, re.S)
-        labels = np.array(match.group(2).split(), dtype=int)
-    except (FileNotFoundError, ValueError, AttributeError, HydroderivError):
-        return {}
-    centres = np.array([points[np.array(faces[i].split(), dtype=int)].mean(axis=0) for i in labels])
-    r = np.linalg.norm(centres, axis=1)
-    return {
-        "faces": int(len(r)),
-        "face_radius_min_m": round(float(r.min()), 4),
-        "face_radius_max_m": round(float(r.max()), 4),
-        "max_deviation_pct_of_radius": round(100.0 * float(np.abs(r - radius).max()) / radius, 3),
-    }
+def face_geometry(points: np.ndarray, face: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """(centre, area vector) of one polygonal face, as OpenFOAM defines them for warped faces too.
+
+    The face is fanned into triangles about its mean point; the area vector is their sum and the centre is
+    their area-weighted centroid.
+    """
+    corners = points[face]
+    middle = corners.mean(axis=0)
+    following = np.roll(corners, -1, axis=0)
+    triangles = 0.5 * np.cross(corners - middle, following - middle)
+    weights = np.linalg.norm(triangles, axis=1)
+    centre = (weights[:, None] * (corners + following + middle)).sum(axis=0) / (3.0 * weights.sum())
+    return centre, triangles.sum(axis=0)

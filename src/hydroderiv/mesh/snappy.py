@@ -20,8 +20,9 @@ from .._io import atomic_write_text
 from ..errors import ConfigurationError
 from ..geometry import Body
 from ..run.openfoam import run_application
-from .design import GRID_SHIFT, REFINEMENT_RATIO, MeshDesign, is_thin_part, mesh_options
-from .quality import MeshQualityError, layer_coverage, parse_check_mesh, sphere_interface_spread
+from .design import BEFORE_THE_FIELD, GRID_SHIFT, REFINEMENT_RATIO, MeshDesign, is_thin_part, mesh_options
+from .interface import project_interface_onto_sphere, sphere_interface_spread
+from .quality import MeshQualityError, layer_coverage, parse_check_mesh
 
 FARFIELD = "farfield"
 ROTATING_ZONE = "rotatingZone"
@@ -316,6 +317,23 @@ def _run_steps(case: Path, steps: list[tuple[str, list[str], int]], log: Callabl
     return timings
 
 
+def _place_interface(case: Path, design: MeshDesign, log: Callable[[str], None]) -> None:
+    """Put the snapped interface of the rotating sphere exactly onto the sphere, if the design asks for it.
+
+    Before checkMesh, so that the quality gate judges the mesh the solver gets; moving points already on
+    the sphere changes nothing, so a mesh checked again after an interruption may pass through here twice.
+    """
+    if design.interface_on_sphere:
+        moved = project_interface_onto_sphere(case, design.sphere_radius, ROTATING_ZONE)
+        log(f"  interface of the rotating sphere: {moved['points']} points put on the sphere "
+            f"(moved by at most {moved['largest_move_pct_of_radius']} % of its radius)")
+
+
+def _sphere_report(case: Path, design: MeshDesign) -> dict:
+    return {"radius_m": design.sphere_radius, "interface_on_sphere": design.interface_on_sphere,
+            **sphere_interface_spread(case, design.sphere_radius, ROTATING_ZONE)}
+
+
 def _quality_gate(case: Path, log: Callable[[str], None]) -> dict:
     """The checkMesh verdict on ``case``: hard failures raise :class:`MeshQualityError`, soft ones are logged."""
     check = parse_check_mesh((case / "log.checkMesh").read_text())
@@ -331,9 +349,11 @@ def _quality_gate(case: Path, log: Callable[[str], None]) -> dict:
 def _check_same_design(case: Path, built: dict, wanted: dict) -> None:
     """A finished mesh is reused only if it was built to the design asked for now.
 
-    Otherwise results would silently come from another mesh, for example after a default changed. Fields
-    the stored report lacks (meshes from before they existed) are not compared.
+    Otherwise results would silently come from another mesh, for example after a default changed. A field
+    the stored report lacks (a mesh from before it existed) is compared with the value meshes had then
+    (design.BEFORE_THE_FIELD), or not at all when that value is not known.
     """
+    built = {**BEFORE_THE_FIELD, **built}
     differ = [f"{name} {built[name]!r} (asked {value!r})" for name, value in wanted.items()
               if name in built and not _same(built[name], value)]
     if differ:
@@ -392,11 +412,12 @@ def build_mesh(
             ("surfaceFeatureExtract", ["surfaceFeatureExtract"], 1),
             ("snappyHexMesh.pre", ["snappyHexMesh", "-overwrite", "-dict", "system/snappyHexMeshDict.pre"], 1),
             *snappy,
-            *check,
         ]
-    timings = _run_steps(case, steps, log)
+    _run_steps(case, steps, log)
     for processor in case.glob("processor*"):
         shutil.rmtree(processor)  # merged back into constant/polyMesh
+    _place_interface(case, design, log)
+    timings = _run_steps(case, check, log)
     check = _quality_gate(case, log)
     layers = design.layers()
     report = {
@@ -414,7 +435,7 @@ def build_mesh(
             "speed_m_s": design_speed,
             "first_cell_centre": round(layers.yplus_target, 1),
         },
-        "rotating_sphere": {"radius_m": design.sphere_radius, **sphere_interface_spread(case, design.sphere_radius)},
+        "rotating_sphere": _sphere_report(case, design),
         "components": list(body.component_names),
         "design": asdict(design),
     }
@@ -437,10 +458,10 @@ def build_empty_domain(case: str | Path, design: MeshDesign, log: Callable[[str]
     _write_meshing_controls(case)
     _write_block_mesh(case, design)
     _write_snappy(case, design, ())
-    _run_steps(case, [("blockMesh", ["blockMesh"], 1), ("snappyHexMesh", ["snappyHexMesh", "-overwrite"], 1),
-                      ("checkMesh", ["checkMesh", "-constant"], 1)], log)
+    _run_steps(case, [("blockMesh", ["blockMesh"], 1), ("snappyHexMesh", ["snappyHexMesh", "-overwrite"], 1)], log)
+    _place_interface(case, design, log)
+    _run_steps(case, [("checkMesh", ["checkMesh", "-constant"], 1)], log)
     check = _quality_gate(case, log)
-    report = {"cells": check["cells"], "checkMesh": check,
-              "rotating_sphere": {"radius_m": design.sphere_radius, **sphere_interface_spread(case, design.sphere_radius)}}
+    report = {"cells": check["cells"], "checkMesh": check, "rotating_sphere": _sphere_report(case, design)}
     atomic_write_text(case / REPORT_FILE, json.dumps(report, indent=2) + "\n")
     return report

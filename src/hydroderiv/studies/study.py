@@ -85,7 +85,7 @@ class Study:
     turbulence_model: str = DEFAULT_TURBULENCE_MODEL
     nonlinear: str = "abs"  # the derivative fit's nonlinear term
     fit_offset: bool = True
-    mesh_options: tuple[tuple[str, float], ...] = ()  # the [mesh] table: MeshDesign fields, as (name, value)
+    mesh_options: tuple[tuple[str, float | bool], ...] = ()  # the [mesh] table: MeshDesign fields, as (name, value)
 
     @classmethod
     def load(cls, path: str | Path) -> Study:

@@ -28,7 +28,7 @@ class Workspace:
     root: Path
     level: str
     method: str = "hybrid"
-    mesh_options: tuple[tuple[str, float], ...] = ()  # MeshDesign fields set by the user, as (name, value)
+    mesh_options: tuple[tuple[str, float | bool], ...] = ()  # MeshDesign fields set by the user, as (name, value)
     turbulence_model: str = DEFAULT_TURBULENCE_MODEL
 
     @property
