@@ -67,7 +67,7 @@ def test_run_order_starts_straight_and_moves_outward():
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nspeed_kn = 6'), r"unknown \[study\] key\(s\) speed_kn"),
         (GOOD + '\n[fit]\nnonlinear = "quadratic"\n', "unknown nonlinear term 'quadratic'"),
         (GOOD + "\n[fit]\nslope_only = true\n", r"unknown \[fit\] keys slope_only"),
-        (GOOD.replace('level = "coarse"', 'level = "coarse"\nturbulence_model = "kEpsilonQCR"'), "unknown turbulence model"),
+        (GOOD.replace('level = "coarse"', 'level = "coarse"\nturbulence_model = "kEpsilonQCR"'), r"\.toml: unknown turbulence model 'kEpsilonQCR'"),
         ("[study\nbody=", "not valid TOML"),
     ],
 )

@@ -44,9 +44,11 @@ DEFAULT_TURBULENCE_MODEL = "kOmegaSST"
 C_MU = 0.09  # epsilon = C_mu k omega
 
 
-def check_turbulence_model(name: str) -> str:
+def check_turbulence_model(name: str, source: str = "") -> str:
+    """``name`` if it is a turbulence model offered here; else an error naming ``source`` (a file) and the choices."""
     from ..errors import ConfigurationError
 
     if name not in TURBULENCE_MODELS:
-        raise ConfigurationError(f"unknown turbulence model {name!r}; choose one of {', '.join(TURBULENCE_MODELS)}")
+        where = f"{source}: " if source else ""
+        raise ConfigurationError(f"{where}unknown turbulence model {name!r}; choose one of {', '.join(TURBULENCE_MODELS)}")
     return name

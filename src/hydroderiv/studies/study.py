@@ -146,7 +146,7 @@ class Study:
             conditions=unique,
             criterion=ConvergenceCriterion(**conv),
             method=method,
-            turbulence_model=check_turbulence_model(head.get("turbulence_model", DEFAULT_TURBULENCE_MODEL)),
+            turbulence_model=check_turbulence_model(head.get("turbulence_model", DEFAULT_TURBULENCE_MODEL), str(path)),
             nonlinear=nonlinear,
             fit_offset=bool(fit.get("offset", True)),
             mesh_options=tuple(sorted(mesh_options(data.get("mesh", {}), str(path)).items())),
