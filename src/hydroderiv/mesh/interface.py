@@ -5,7 +5,7 @@ rotating-zone cell, the interface faces included, while the inertial cell beyond
 its other faces. On a true sphere centred at the rotation centre B, Omega x r is tangent to the interface,
 the correction there vanishes, and uniform flow is an exact solution in both zones. snappyHexMesh leaves
 the interface points scattered within about 0.5 % of the radius about the sphere. Their faces then tilt away
-from it (2.3 degrees median, 21 degrees at most on the coarse empty domain), and the correction through them
+from it (2.3 degrees median, 21 degrees at most on the coarse AFF-8 mesh), and the correction through them
 disturbed uniform flow by 2.6 % of U next to the interface in a turn of r' = 0.3. Moving every interface
 point radially onto the sphere leaves the faces tilted by 0.3 degrees at most, and the disturbance falls
 to 0.06 %.
