@@ -43,19 +43,25 @@ def face_zone_faces(mesh_dir: str | Path, zone: str = ZONE) -> list[np.ndarray]:
     return [np.array(faces[i].split(), dtype=int) for i in np.array(match.group(2).split(), dtype=int)]
 
 
+def _centres_and_areas(points: np.ndarray, faces: list[np.ndarray]) -> tuple[np.ndarray, np.ndarray]:
+    geometry = [face_geometry(points, face) for face in faces]
+    return np.array([c for c, _ in geometry]).reshape(-1, 3), np.array([a for _, a in geometry]).reshape(-1, 3)
+
+
+def _tilt(centres: np.ndarray, areas: np.ndarray) -> np.ndarray:
+    sine = np.linalg.norm(np.cross(centres, areas), axis=1) / (
+        np.linalg.norm(centres, axis=1) * np.linalg.norm(areas, axis=1))
+    return np.degrees(np.arcsin(np.minimum(sine, 1.0)))
+
+
 def tilt_degrees(points: np.ndarray, faces: list[np.ndarray], origin=(0.0, 0.0, 0.0)) -> np.ndarray:
     """Angle of each face's normal from the radial line through its centre, in degrees.
 
     The MRF flux through a face of a sphere centred at ``origin``, (Omega x r_f) . S_f, is |Omega x r_f| |S_f|
     times the sine of this angle at most.
     """
-    out = np.empty(len(faces))
-    for k, face in enumerate(faces):
-        centre, area = face_geometry(points, face)
-        radial = centre - np.asarray(origin, dtype=float)
-        sine = np.linalg.norm(np.cross(radial, area)) / (np.linalg.norm(radial) * np.linalg.norm(area))
-        out[k] = np.degrees(np.arcsin(min(sine, 1.0)))
-    return out
+    centres, areas = _centres_and_areas(points, faces)
+    return _tilt(centres - np.asarray(origin, dtype=float), areas)
 
 
 def sphere_interface_spread(case: str | Path, radius: float, zone: str = ZONE) -> dict:
@@ -66,8 +72,9 @@ def sphere_interface_spread(case: str | Path, radius: float, zone: str = ZONE) -
         faces = face_zone_faces(mesh, zone)
     except (FileNotFoundError, ValueError, HydroderivError):
         return {}
-    r = np.linalg.norm([face_geometry(points, face)[0] for face in faces], axis=1)
-    tilt = tilt_degrees(points, faces)
+    centres, areas = _centres_and_areas(points, faces)  # once, for both the radii and the tilt
+    r = np.linalg.norm(centres, axis=1)
+    tilt = _tilt(centres, areas)
     return {
         "faces": int(len(r)),
         "face_radius_min_m": round(float(r.min()), 4),
@@ -85,7 +92,7 @@ def project_interface_onto_sphere(case: str | Path, radius: float, zone: str = Z
     Returns the number of points moved and the largest move, in % of the radius.
     """
     mesh = Path(case) / "constant/polyMesh"
-    points = read_points(mesh)
+    header, points = read_points(mesh, with_header=True)
     labels = np.unique(np.concatenate(face_zone_faces(mesh, zone)))
     r = np.linalg.norm(points[labels], axis=1)
     if np.any(r <= 0.0):
@@ -97,8 +104,6 @@ def project_interface_onto_sphere(case: str | Path, radius: float, zone: str = Z
                               f"origin (a point lies {largest:.3g} m from it)")
     off = np.abs(r - radius) > 1e-12 * radius  # points already on it stay as they are, bit for bit
     points[labels[off]] *= (radius / r[off])[:, None]
-    text = (mesh / "points").read_text()
-    header = text[: text.index("}", text.index("FoamFile")) + 1]
     rows = "\n".join(f"({x:.15g} {y:.15g} {z:.15g})" for x, y, z in points)
     atomic_write_text(mesh / "points", f"{header}\n\n\n{len(points)}\n(\n{rows}\n)\n")
     return {"points": int(len(labels)), "largest_move_pct_of_radius": round(100.0 * largest / radius, 3)}

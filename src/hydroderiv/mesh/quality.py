@@ -81,12 +81,18 @@ def layer_coverage(case: Path, layers_wanted: dict[str, int]) -> dict:
     return out
 
 
-def poly_list(path: Path) -> str:
-    """The text of an ascii polyMesh list file (faces, owner, ...) from its opening parenthesis on."""
+def _ascii_file(path: Path) -> tuple[str, str]:
+    """(header, body) of an ascii OpenFOAM file: its FoamFile dictionary, and everything after it."""
     text = path.read_text()
     header_end = text.index("}", text.index("FoamFile")) + 1
     require_ascii(text[:header_end], path)
-    return text[text.index("(", header_end):]
+    return text[:header_end], text[header_end:]
+
+
+def poly_list(path: Path) -> str:
+    """The text of an ascii polyMesh list file (faces, owner, ...) from its opening parenthesis on."""
+    body = _ascii_file(path)[1]
+    return body[body.index("("):]
 
 
 def require_ascii(header: str, path: Path) -> None:
@@ -96,15 +102,14 @@ def require_ascii(header: str, path: Path) -> None:
         raise HydroderivError(f"{path} is written in {match.group(1)}; only ascii meshes can be read here")
 
 
-def read_points(mesh_dir: Path) -> np.ndarray:
-    """The points of an ascii polyMesh, (n, 3) in metres."""
-    path = Path(mesh_dir) / "points"
-    text = path.read_text()
-    header_end = text.index("}", text.index("FoamFile")) + 1
-    require_ascii(text[:header_end], path)
-    count = re.search(r"(\d+)\s*\(", text[header_end:])
-    values = text[header_end + count.end() :].translate(str.maketrans("()", "  ")).split()
-    return np.array(values[: 3 * int(count.group(1))], dtype=float).reshape(-1, 3)
+def read_points(mesh_dir: Path, with_header: bool = False):
+    """The points of an ascii polyMesh, (n, 3) in metres; with its FoamFile header first if ``with_header``
+    (for writing the points back)."""
+    header, body = _ascii_file(Path(mesh_dir) / "points")
+    count = re.search(r"(\d+)\s*\(", body)
+    values = body[count.end() :].translate(str.maketrans("()", "  ")).split()
+    points = np.array(values[: 3 * int(count.group(1))], dtype=float).reshape(-1, 3)
+    return (header, points) if with_header else points
 
 
 def face_geometry(points: np.ndarray, face: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
