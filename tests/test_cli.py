@@ -78,6 +78,7 @@ def test_a_committed_table_is_refitted_from_the_forces_it_carries(tmp_path, caps
     refit = json.loads(out.read_text())
     for name in ("Yv", "Nv", "Zw", "Mw", "Yr", "Nr"):
         assert refit[name] == pytest.approx(committed[name], rel=1e-12)
+    assert refit["meta"]["turbulence_model"] == "kOmegaSST" and refit["meta"]["method"] == "hybrid"
     side_force = {c["condition"]["drift_deg"]: c["coefficients"]["Y"] for c in committed["conditions"]
                   if c["condition"]["pitch_deg"] == 0 and c["condition"]["yaw_rate_prime"] == 0}
     b = math.radians(4)
