@@ -86,6 +86,19 @@ def test_a_committed_table_is_refitted_from_the_forces_it_carries(tmp_path, caps
     assert refit["details"]["Yv"]["single_point_by_magnitude"]["4"] == pytest.approx(mirror_pair, rel=1e-9)
 
 
+def test_a_table_names_the_turbulence_model_and_frame_method_it_was_computed_with(tmp_path, capsys):
+    """The classic AFF-3 table (Shih's model, the whole domain rotating) says so in its meta and its title."""
+    from pathlib import Path
+
+    root = Path(__file__).parent.parent
+    out = tmp_path / "classic.json"
+    code = main(["derivatives", str(root / "studies/aff3-medium-classic.toml"), "--conditions",
+                 str(root / "validation/classic-AFF-3-medium.json"), "--out", str(out)])
+    assert code == 0 and "ShihQuadraticKE, classic rotating domain" in capsys.readouterr().out
+    meta = json.loads(out.read_text())["meta"]
+    assert (meta["turbulence_model"], meta["method"]) == ("ShihQuadraticKE", "classic")
+
+
 def test_a_table_without_conditions_is_named(tmp_path, capsys):
     from pathlib import Path
 
