@@ -206,9 +206,10 @@ def _derivatives(args: argparse.Namespace) -> int:
     rows = table_rows(fits, reference_key=study.body)
     if not rows:
         raise HydroderivError(f"no sweep of {study.path} has enough finished conditions for a derivative yet")
+    body = study.body or str(study.body_dir)
     # The set-up goes into every title and the JSON: tables of one body and mesh differ by model and method.
     setup = study.turbulence_model + (", classic rotating domain" if study.method == "classic" else "")
-    table = Table(title=f"derivatives, {study.body or study.body_dir} on the {study.level} mesh, {setup} "
+    table = Table(title=f"derivatives, {body} on the {study.level} mesh, {setup} "
                         "(prime units, L-based)")
     for column in ("derivative", "fit", "std. error", "iterative", "single-point", "single-point by magnitude", "points",
                    "experiment", "error (%)", "exp. unc. (%)"):
@@ -221,12 +222,12 @@ def _derivatives(args: argparse.Namespace) -> int:
                       "-" if row.error_pct is None else f"{row.error_pct:+.1f}", f"{row.experimental_uncertainty_pct:.0f}")
     console.print(table)
     out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
-    meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": study.body or str(study.body_dir),
+    meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": body,
             "turbulence_model": study.turbulence_model, "method": study.method, "conditions": len(results),
             "fit": {"nonlinear": study.nonlinear, "offset": study.fit_offset}}
     paths = write_table(rows, out, meta, results)
     reference = DERIVATIVES.get(study.body or "", {}).get("values")
-    plot = plot_fits(fits, out.with_suffix(".png"), f"{study.body or study.body_dir}, {study.level} mesh, {setup}", reference)
+    plot = plot_fits(fits, out.with_suffix(".png"), f"{body}, {study.level} mesh, {setup}", reference)
     console.print(f"written: {paths[0]}, {paths[1]}, {plot}")
     return 0
 
