@@ -114,3 +114,23 @@ def test_the_reversed_flow_of_a_study_with_nothing_finished_is_named(tmp_path, c
     study.write_text(f'[study]\nbody = "AFF-1"\nlevel = "coarse"\nspeed_knots = 6.5\nwork = "{tmp_path / "work"}"\n[sweeps]\ndrift_deg = [4]\n')
     assert main(["study", "flow", str(study)]) == 2
     assert "has finished yet" in capsys.readouterr().out
+
+
+def test_grid_convergence_of_three_committed_style_tables(tmp_path, capsys):
+    # three tables of N'r = -0.0036 + 0.0008 h^2 at r' = 0.1 on the three levels
+    paths = []
+    for i, level in enumerate(("coarse", "medium", "fine")):
+        value = -0.0036 + 0.0008 * 2.0 ** (2 - i)  # h = sqrt(2) ** (2 - i), so h^2 = 2 ** (2 - i)
+        path = tmp_path / f"{level}.json"
+        path.write_text(json.dumps({"Nr": value, "meta": {"level": level, "body": "AFF-8", "method": "hybrid",
+                                                           "turbulence_model": "ShihQuadraticKE", "speed_m_s": 3.344},
+                                    "details": {"Nr": {"value": value, "single_point_by_magnitude": {"0.1": value}}}}))
+        paths.append(str(path))
+    out = tmp_path / "convergence.json"
+    assert main(["convergence", *paths, "--magnitude", "0.1", "--out", str(out)]) == 0
+    result = json.loads(out.read_text())
+    assert result["tables"] == {"coarse": paths[0], "medium": paths[1], "fine": paths[2]}
+    assert result["derivatives"]["Nr"]["extrapolated"] == pytest.approx(-0.0036, rel=1e-9)
+    assert "grid convergence" in capsys.readouterr().out
+    assert main(["convergence", paths[0], paths[1], str(tmp_path / "missing.json")]) == 2
+    assert "missing.json: no such derivative table" in capsys.readouterr().out

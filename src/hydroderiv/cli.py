@@ -232,6 +232,48 @@ def _derivatives(args: argparse.Namespace) -> int:
     return 0
 
 
+def _convergence(args: argparse.Namespace) -> int:
+    from .derivatives.convergence import grid_convergence
+
+    tables = {}
+    for name in args.tables:
+        try:
+            tables[name] = json.loads(Path(name).read_text())
+        except FileNotFoundError:
+            raise HydroderivError(f"{name}: no such derivative table") from None
+        except json.JSONDecodeError as error:
+            raise HydroderivError(f"{name}: not JSON ({error})") from None
+    rows = grid_convergence(tables, args.magnitude)
+    meta = next(iter(tables.values()))["meta"]
+    what = "fitted slopes" if args.magnitude is None else f"single points at {args.magnitude}"
+    table = Table(title=f"grid convergence, {meta.get('body')} ({meta.get('turbulence_model', 'kOmegaSST')}), {what}: "
+                        "coarse / medium / fine, Richardson estimate, uncertainties and the experiment")
+    for column in ("derivative", "coarse", "medium", "fine", "R", "order", "extrapolated", "U_num (%)", "experiment",
+                   "E (%)", "U_val (%)", "|E| <= U_val"):
+        table.add_column(column, justify="right")
+
+    def number(value, form):
+        return "-" if value is None else format(value, form)
+
+    for row in rows:
+        e = row.estimate
+        percent = (lambda v: None if v is None or not row.reference else 100.0 * v / abs(row.reference))
+        table.add_row(row.name, f"{e.coarse:+.5f}", f"{e.medium:+.5f}", f"{e.fine:+.5f}",
+                      number(e.convergence_ratio, "+.2f") + ("" if e.kind == "monotonic" else f" ({e.kind})"),
+                      number(e.order, ".2f"), number(e.extrapolated, "+.5f"),
+                      number(None if row.numerical_uncertainty is None or not e.fine else 100 * row.numerical_uncertainty / abs(e.fine), ".1f"),
+                      number(row.reference, "+.6f"), number(percent(row.comparison_error), "+.1f"),
+                      number(percent(row.validation_uncertainty), ".1f"),
+                      {True: "yes", False: "no", None: "-"}[row.validated])
+    console.print(table)
+    if args.out:
+        payload = {"tables": {level: name for name, level in ((n, t["meta"]["level"]) for n, t in tables.items())},
+                   "compared": what, "derivatives": {row.name: row.as_dict() for row in rows}}
+        atomic_write_text(args.out, json.dumps(payload, indent=2) + "\n")
+        console.print(f"written: {args.out}")
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="hydroderiv",
@@ -300,6 +342,14 @@ def build_parser() -> argparse.ArgumentParser:
     der.add_argument("--conditions", metavar="TABLE_JSON",
                      help="take the conditions' forces from a derivative table written earlier, not from WORK")
     der.set_defaults(func=_derivatives)
+
+    conv = steps.add_parser("convergence", help="grid convergence of derivatives over coarse, medium and fine tables, "
+                            "with the Richardson estimate and the validation uncertainty")
+    conv.add_argument("tables", nargs=3, metavar="TABLE_JSON", help="derivative tables of one set-up on the three mesh levels")
+    conv.add_argument("--magnitude", help="compare the single points at this sweep magnitude (e.g. 0.1 or 4) "
+                      "instead of the fitted slopes")
+    conv.add_argument("--out", help="JSON output")
+    conv.set_defaults(func=_convergence)
     return parser
 
 

@@ -27,7 +27,7 @@ import numpy as np
 
 from .._io import atomic_write_text
 from ..errors import HydroderivError
-from .quality import face_geometry, poly_list, read_points
+from .quality import face_geometry, poly_list, read_points, read_points_file
 
 ZONE = "rotatingZone"
 
@@ -92,7 +92,7 @@ def project_interface_onto_sphere(case: str | Path, radius: float, zone: str = Z
     Returns the number of points moved and the largest move, in % of the radius.
     """
     mesh = Path(case) / "constant/polyMesh"
-    header, points = read_points(mesh, with_header=True)
+    header, points = read_points_file(mesh)
     labels = np.unique(np.concatenate(face_zone_faces(mesh, zone)))
     r = np.linalg.norm(points[labels], axis=1)
     if np.any(r <= 0.0):

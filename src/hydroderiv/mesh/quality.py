@@ -102,14 +102,18 @@ def require_ascii(header: str, path: Path) -> None:
         raise HydroderivError(f"{path} is written in {match.group(1)}; only ascii meshes can be read here")
 
 
-def read_points(mesh_dir: Path, with_header: bool = False):
-    """The points of an ascii polyMesh, (n, 3) in metres; with its FoamFile header first if ``with_header``
-    (for writing the points back)."""
+def read_points_file(mesh_dir: Path) -> tuple[str, np.ndarray]:
+    """The FoamFile header and the points, (n, 3) in metres, of an ascii polyMesh: the header is what
+    writing the points back needs."""
     header, body = _ascii_file(Path(mesh_dir) / "points")
     count = re.search(r"(\d+)\s*\(", body)
     values = body[count.end() :].translate(str.maketrans("()", "  ")).split()
-    points = np.array(values[: 3 * int(count.group(1))], dtype=float).reshape(-1, 3)
-    return (header, points) if with_header else points
+    return header, np.array(values[: 3 * int(count.group(1))], dtype=float).reshape(-1, 3)
+
+
+def read_points(mesh_dir: Path) -> np.ndarray:
+    """The points of an ascii polyMesh, (n, 3) in metres."""
+    return read_points_file(mesh_dir)[1]
 
 
 def face_geometry(points: np.ndarray, face: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
