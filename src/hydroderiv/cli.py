@@ -202,7 +202,7 @@ def _derivatives(args: argparse.Namespace) -> int:
         results = _conditions_of_table(Path(args.conditions))
     else:
         results = [r for c in study.conditions if (r := read_result(study.case_dir(c)))]
-    fits = fit_sweeps(results, study.nonlinear, study.fit_offset)  # once: the table and the plot show the same fits
+    fits = fit_sweeps(results, study.nonlinear, study.fit_offset, study.max_angle_deg)  # once: the table and the plot show the same fits
     rows = table_rows(fits, reference_key=study.body)
     if not rows:
         raise HydroderivError(f"no sweep of {study.path} has enough finished conditions for a derivative yet")
@@ -224,7 +224,8 @@ def _derivatives(args: argparse.Namespace) -> int:
     out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": body,
             "turbulence_model": study.turbulence_model, "method": study.method, "conditions": len(results),
-            "fit": {"nonlinear": study.nonlinear, "offset": study.fit_offset}}
+            "fit": {"nonlinear": study.nonlinear, "offset": study.fit_offset,
+                    **({} if study.max_angle_deg is None else {"max_angle_deg": study.max_angle_deg})}}
     paths = write_table(rows, out, meta, results)
     reference = DERIVATIVES.get(study.body or "", {}).get("values")
     plot = plot_fits(fits, out.with_suffix(".png"), f"{body}, {study.level} mesh, {setup}", reference)
@@ -248,22 +249,24 @@ def _convergence(args: argparse.Namespace) -> int:
     what = "fitted slopes" if args.magnitude is None else f"single points at {args.magnitude}"
     table = Table(title=f"grid convergence, {meta.get('body')} ({meta.get('turbulence_model', 'kOmegaSST')}), {what}: "
                         "coarse / medium / fine, Richardson estimate, uncertainties and the experiment")
-    for column in ("derivative", "coarse", "medium", "fine", "R", "order", "extrapolated", "U_num (%)", "experiment",
-                   "E (%)", "U_val (%)", "|E| <= U_val"):
+    for column in ("derivative", "coarse", "medium", "fine", "R", "order", "extrapolated", "U_num (% of fine)",
+                   "experiment", "E (% of exp.)", "U_val (% of exp.)", "|E| <= U_val"):
         table.add_column(column, justify="right")
 
     def number(value, form):
         return "-" if value is None else format(value, form)
 
+    def percent(value, of):
+        return None if value is None or not of else 100.0 * value / abs(of)
+
     for row in rows:
         e = row.estimate
-        percent = (lambda v: None if v is None or not row.reference else 100.0 * v / abs(row.reference))
         table.add_row(row.name, f"{e.coarse:+.5f}", f"{e.medium:+.5f}", f"{e.fine:+.5f}",
                       number(e.convergence_ratio, "+.2f") + ("" if e.kind == "monotonic" else f" ({e.kind})"),
                       number(e.order, ".2f"), number(e.extrapolated, "+.5f"),
-                      number(None if row.numerical_uncertainty is None or not e.fine else 100 * row.numerical_uncertainty / abs(e.fine), ".1f"),
-                      number(row.reference, "+.6f"), number(percent(row.comparison_error), "+.1f"),
-                      number(percent(row.validation_uncertainty), ".1f"),
+                      number(percent(row.numerical_uncertainty, e.fine), ".1f"), number(row.reference, "+.6f"),
+                      number(percent(row.comparison_error, row.reference), "+.1f"),
+                      number(percent(row.validation_uncertainty, row.reference), ".1f"),
                       {True: "yes", False: "no", None: "-"}[row.validated])
     console.print(table)
     if args.out:

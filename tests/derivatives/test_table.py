@@ -7,6 +7,7 @@ import pytest
 
 from hydroderiv.case import Condition
 from hydroderiv.derivatives.table import derivative_table, write_table
+from hydroderiv.errors import ConfigurationError
 
 
 def record(condition, **coefficients):
@@ -96,3 +97,38 @@ def test_a_linear_fit_needs_only_one_point_each_side():
     rows = {r.name: r for r in derivative_table(results, nonlinear="none")}
     assert set(rows) == {"Yv", "Nv", "Yr", "Nr"}
     assert rows["Yr"].value == pytest.approx(0.00325, rel=1e-6) and rows["Nr"].value == pytest.approx(-0.00372, rel=0.05)
+
+
+def stalled_drift_sweep(yv=-0.0278, yvv=-0.02):
+    """Drift to +-12 degrees: Y' = Yv u'v' + Yv|v| v'|v'| up to 8 degrees, and half of that at 12 (a stall)."""
+    out = [record(Condition(3.344))]
+    for beta in (-12, -8, -4, -2, 2, 4, 8, 12):
+        c = Condition(3.344, drift_deg=beta)
+        u, v, _ = c.body_velocity() / c.speed
+        y = yv * u * v + yvv * v * abs(v)
+        out.append(record(c, Y=0.5 * y if abs(beta) > 8 else y))
+    for r in (-0.2, -0.1, 0.1, 0.2):
+        out.append(record(Condition(3.344, yaw_rate_prime=r), Y=0.003 * r))
+    return out
+
+
+def test_a_fit_range_keeps_a_stall_out_of_the_slope_but_in_the_single_points():
+    results = stalled_drift_sweep()
+    everything = {r.name: r for r in derivative_table(results, nonlinear="cubic")}
+    limited = {r.name: r for r in derivative_table(results, nonlinear="cubic", max_angle_deg=8)}
+    # Y' = Yv u'v' + Yv|v| v'|v'| is not exactly linear + cubic in v', but within 8 degrees close to it
+    assert limited["Yv"].value == pytest.approx(-0.0278, rel=0.05)
+    assert abs(everything["Yv"].value - limited["Yv"].value) > 0.1 * 0.0278  # the stall moves the full fit
+    assert limited["Yv"].n_points == 7 and everything["Yv"].n_points == 9
+    assert set(limited["Yv"].single_point_by_magnitude) == {"2", "4", "8", "12"}  # all magnitudes still shown
+    # the single point at 12 degrees shows the stall: half the load of the unstalled curve
+    c12 = Condition(3.344, drift_deg=12)
+    u, v, _ = c12.body_velocity() / c12.speed
+    assert limited["Yv"].single_point_by_magnitude["12"] == pytest.approx(0.5 * (-0.0278 - 0.02 * abs(v) / u), rel=1e-9)
+    # turns are not limited by an angle
+    assert limited["Yr"].value == pytest.approx(0.003, rel=1e-9) and limited["Yr"].n_points == 5
+
+
+def test_a_fit_range_must_be_positive():
+    with pytest.raises(ConfigurationError, match="max_angle_deg must be positive"):
+        derivative_table(stalled_drift_sweep(), max_angle_deg=0)

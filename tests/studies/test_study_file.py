@@ -45,7 +45,8 @@ def test_a_study_lists_straight_ahead_sweeps_and_extras(tmp_path):
 def test_the_fit_model_is_read_from_the_study_file(tmp_path):
     assert (Study.load(write(tmp_path, GOOD)).nonlinear, Study.load(write(tmp_path, GOOD)).fit_offset) == ("abs", True)
     study = Study.load(write(tmp_path, GOOD + '\n[fit]\nnonlinear = "none"\noffset = false\n'))
-    assert study.nonlinear == "none" and study.fit_offset is False
+    assert study.nonlinear == "none" and study.fit_offset is False and study.max_angle_deg is None
+    assert Study.load(write(tmp_path, GOOD + "\n[fit]\nmax_angle_deg = 4\n")).max_angle_deg == 4.0
 
 
 def test_run_order_starts_straight_and_moves_outward():
@@ -67,6 +68,8 @@ def test_run_order_starts_straight_and_moves_outward():
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nspeed_kn = 6'), r"unknown \[study\] key\(s\) speed_kn"),
         (GOOD + '\n[fit]\nnonlinear = "quadratic"\n', "unknown nonlinear term 'quadratic'"),
         (GOOD + "\n[fit]\nslope_only = true\n", r"unknown \[fit\] keys slope_only"),
+        (GOOD + "\n[fit]\nmax_angle_deg = -4\n", "max_angle_deg = -4 must be a positive angle"),
+        (GOOD + '\n[fit]\nmax_angle_deg = "small"\n', "max_angle_deg = 'small' must be a positive angle"),
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nturbulence_model = "kEpsilonQCR"'), r"\.toml: unknown turbulence model 'kEpsilonQCR'"),
         ("[study\nbody=", "not valid TOML"),
     ],

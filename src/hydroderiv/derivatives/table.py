@@ -27,6 +27,7 @@ import numpy as np
 from .._io import atomic_write_text
 from ..case import Condition
 from ..case.conditions import SWEEP_KEYS
+from ..errors import ConfigurationError
 from ..experiments import DERIVATIVES, DERIVATIVE_UNCERTAINTY
 from ..forces import COEFFICIENT_NAMES
 from .fit import DerivativeFit
@@ -84,12 +85,25 @@ class SweepFit:
     fit: DerivativeFit
     sweep_values: np.ndarray
     y_std: np.ndarray | None = None
+    in_fit: np.ndarray | None = None  # which points the fit used (all where None; see fit_sweeps)
+
+    @property
+    def fitted(self) -> np.ndarray:
+        return np.ones(len(self.xs), dtype=bool) if self.in_fit is None else self.in_fit
 
 
-def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = True) -> dict[str, SweepFit]:
-    """Fit every derivative whose sweep has enough points. ``results`` are condition result records."""
+def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = True,
+               max_angle_deg: float | None = None) -> dict[str, SweepFit]:
+    """Fit every derivative whose sweep has enough points. ``results`` are condition result records.
+
+    ``max_angle_deg`` limits the static (drift and pitch) fits to the points within that angle, so that
+    the slope at the origin is not set by a stall at larger angles; the points beyond it are kept in the
+    sweep (and in the single points per magnitude) but not fitted. Turns are not limited.
+    """
+    if max_angle_deg is not None and max_angle_deg <= 0:
+        raise ConfigurationError(f"the fit's max_angle_deg must be positive, not {max_angle_deg}")
     fits = {}
-    for name, (sweep, coefficient, _) in DEFINITIONS.items():
+    for name, (sweep, coefficient, kind) in DEFINITIONS.items():
         xs, us, ys, stds, values = [], [], [], [], []
         for record in results:
             condition = Condition(**record["condition"])
@@ -103,19 +117,22 @@ def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = T
             window_std = record.get("window_std")
             stds.append(window_std[COEFFICIENT_NAMES.index(coefficient)] if window_std else np.nan)
         xs, us, ys, stds, values = map(np.asarray, (xs, us, ys, stds, values))
+        limited = kind == "static" and max_angle_deg is not None
+        in_fit = np.abs(values) <= max_angle_deg + 1e-9 if limited else np.ones(len(xs), dtype=bool)
         estimator = DerivativeFit(nonlinear=nonlinear, fit_offset=fit_offset)
-        if not estimator.has_enough_magnitudes(xs):
+        if not estimator.has_enough_magnitudes(xs[in_fit]):
             continue  # this sweep was not run (or has too few magnitudes for a slope and a nonlinear term)
-        estimator.fit(xs, ys, y_std=stds)
-        fits[name] = SweepFit(xs, us, ys, estimator, sweep_values=values, y_std=stds)
+        estimator.fit(xs[in_fit], ys[in_fit], y_std=stds[in_fit])
+        fits[name] = SweepFit(xs, us, ys, estimator, sweep_values=values, y_std=stds, in_fit=in_fit)
     return fits
 
 
 def derivative_table(
-    results: list[dict], reference_key: str | None = None, nonlinear: str = "abs", fit_offset: bool = True
+    results: list[dict], reference_key: str | None = None, nonlinear: str = "abs", fit_offset: bool = True,
+    max_angle_deg: float | None = None,
 ) -> list[DerivativeRow]:
     """The table rows: each fitted derivative beside its single-point value and the experiment."""
-    return table_rows(fit_sweeps(results, nonlinear, fit_offset), reference_key)
+    return table_rows(fit_sweeps(results, nonlinear, fit_offset, max_angle_deg), reference_key)
 
 
 def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> list[DerivativeRow]:
@@ -129,7 +146,7 @@ def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> l
         # single-point definitions: static Y'v = Y'/(u'v'); rotary Y'r = Y'/r'
         denominators = xs[nonzero] * (us[nonzero] if kind == "static" else 1.0)
         singles = ys[nonzero] / denominators
-        single = float(np.mean(singles))
+        single = float(np.mean(singles[sweep.fitted[nonzero]]))  # over the fitted range; per magnitude, all
         magnitudes = np.abs(sweep.sweep_values[nonzero])
         by_magnitude = {f"{m:g}": float(np.mean(singles[magnitudes == m])) for m in np.unique(magnitudes)}
         ref = reference.get(name)

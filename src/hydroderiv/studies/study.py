@@ -30,6 +30,8 @@ Example::
     [fit]                     # optional, see DerivativeFit
     nonlinear = "abs"         # "abs" (Gertler-Hagen v|v|, default), "cubic" or "none" (one point each side)
     offset = true             # fit a constant too (default): absorbs an asymmetry such as the sail's
+    max_angle_deg = 8         # optional: fit drift and pitch only up to this angle (beyond it, e.g. a stall,
+                              # the points stay in the table's single points per magnitude)
 """
 
 from __future__ import annotations
@@ -85,6 +87,7 @@ class Study:
     turbulence_model: str = DEFAULT_TURBULENCE_MODEL
     nonlinear: str = "abs"  # the derivative fit's nonlinear term
     fit_offset: bool = True
+    max_angle_deg: float | None = None  # static fits use the points within this angle (None: all)
     mesh_options: tuple[tuple[str, float | bool], ...] = ()  # the [mesh] table: MeshDesign fields, as (name, value)
 
     @classmethod
@@ -130,8 +133,12 @@ class Study:
         if set(conv) - allowed:
             raise ConfigurationError(f"{path}: unknown convergence keys {', '.join(sorted(set(conv) - allowed))}")
         fit = data.get("fit", {})
-        if set(fit) - {"nonlinear", "offset"}:
-            raise ConfigurationError(f"{path}: unknown [fit] keys {', '.join(sorted(set(fit) - {'nonlinear', 'offset'}))}")
+        fit_keys = {"nonlinear", "offset", "max_angle_deg"}
+        if set(fit) - fit_keys:
+            raise ConfigurationError(f"{path}: unknown [fit] keys {', '.join(sorted(set(fit) - fit_keys))}")
+        max_angle = fit.get("max_angle_deg")
+        if max_angle is not None and (not isinstance(max_angle, (int, float)) or max_angle <= 0):
+            raise ConfigurationError(f"{path}: [fit] max_angle_deg = {max_angle!r} must be a positive angle in degrees")
         nonlinear = fit.get("nonlinear", "abs")
         if nonlinear not in NONLINEAR_TERMS:
             raise ConfigurationError(f"{path}: unknown nonlinear term {nonlinear!r}; choose one of {', '.join(NONLINEAR_TERMS)}")
@@ -149,6 +156,7 @@ class Study:
             turbulence_model=check_turbulence_model(head.get("turbulence_model", DEFAULT_TURBULENCE_MODEL), str(path)),
             nonlinear=nonlinear,
             fit_offset=bool(fit.get("offset", True)),
+            max_angle_deg=None if max_angle is None else float(max_angle),
             mesh_options=tuple(sorted(mesh_options(data.get("mesh", {}), str(path)).items())),
         )
 
