@@ -84,12 +84,8 @@ class SweepFit:
     ys: np.ndarray
     fit: DerivativeFit
     sweep_values: np.ndarray
+    in_fit: np.ndarray  # which points the fit used (see fit_sweeps' max_angle_deg)
     y_std: np.ndarray | None = None
-    in_fit: np.ndarray | None = None  # which points the fit used (all where None; see fit_sweeps)
-
-    @property
-    def fitted(self) -> np.ndarray:
-        return np.ones(len(self.xs), dtype=bool) if self.in_fit is None else self.in_fit
 
 
 def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = True,
@@ -123,7 +119,7 @@ def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = T
         if not estimator.has_enough_magnitudes(xs[in_fit]):
             continue  # this sweep was not run (or has too few magnitudes for a slope and a nonlinear term)
         estimator.fit(xs[in_fit], ys[in_fit], y_std=stds[in_fit])
-        fits[name] = SweepFit(xs, us, ys, estimator, sweep_values=values, y_std=stds, in_fit=in_fit)
+        fits[name] = SweepFit(xs, us, ys, estimator, sweep_values=values, in_fit=in_fit, y_std=stds)
     return fits
 
 
@@ -146,7 +142,7 @@ def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> l
         # single-point definitions: static Y'v = Y'/(u'v'); rotary Y'r = Y'/r'
         denominators = xs[nonzero] * (us[nonzero] if kind == "static" else 1.0)
         singles = ys[nonzero] / denominators
-        single = float(np.mean(singles[sweep.fitted[nonzero]]))  # over the fitted range; per magnitude, all
+        single = float(np.mean(singles[sweep.in_fit[nonzero]]))  # over the fitted range; per magnitude, all
         magnitudes = np.abs(sweep.sweep_values[nonzero])
         by_magnitude = {f"{m:g}": float(np.mean(singles[magnitudes == m])) for m in np.unique(magnitudes)}
         ref = reference.get(name)

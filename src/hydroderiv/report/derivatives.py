@@ -23,15 +23,14 @@ def plot_fits(fits: dict[str, SweepFit], path: str | Path, title: str, reference
     for ax, name in zip(axes.flat, names):
         sweep, coefficient, _ = DEFINITIONS[name]
         f = fits[name]
-        x = np.linspace(min(f.xs.min(), 0.0), max(f.xs.max(), 0.0), 100)
+        inside = f.in_fit
+        x = np.linspace(min(f.xs[inside].min(), 0.0), max(f.xs[inside].max(), 0.0), 100)  # the fitted range
         has_std = f.y_std is not None and np.isfinite(f.y_std).all()
         # error bars: each point's standard deviation over its averaging window (iterative uncertainty)
-        inside = f.fitted
         ax.errorbar(f.xs[inside], f.ys[inside], yerr=f.y_std[inside] if has_std else None, fmt="o", capsize=3,
                     label="CFD")
         if not inside.all():  # beyond the fit's angle range: shown, not fitted
             ax.plot(f.xs[~inside], f.ys[~inside], "o", mfc="none", color="C0", label="CFD, not fitted")
-            x = np.linspace(min(f.xs[inside].min(), 0.0), max(f.xs[inside].max(), 0.0), 100)
         ax.plot(x, f.fit.predict(x), "-", label=f"fit, {name}' = {f.fit.slope_:+.5f}")
         if reference and name in reference:
             ax.plot(x, f.fit.offset_ + reference[name] * x, "k--", lw=1, label=f"experiment {reference[name]:+.5f}")
