@@ -32,6 +32,26 @@ def test_the_convection_order_is_read_back_from_the_case(tmp_path):
     assert has_second_order_convection(tmp_path)
 
 
+def test_a_limited_pressure_gradient_survives_the_switch_to_second_order(tmp_path):
+    """The limiter is chosen when the case is set up; the mid-run switch of the convection schemes must not
+    drop it, and a case set up without it stays without it."""
+    from foamlib import FoamFile
+
+    from hydroderiv.case.numerics import (LIMITED_PRESSURE_GRADIENT, has_second_order_convection,
+                                          switch_to_second_order_convection, write_numerics)
+
+    for limited in (True, False):
+        case = tmp_path / str(limited)
+        (case / "system").mkdir(parents=True)
+        write_numerics(case, second_order=False, limit_pressure_gradient=limited)
+        switch_to_second_order_convection(case)
+        assert has_second_order_convection(case)
+        grad = FoamFile(case / "system/fvSchemes")["gradSchemes"]
+        assert ("grad(p)" in grad) is limited
+        if limited:
+            assert " ".join(map(str, grad["grad(p)"])) == LIMITED_PRESSURE_GRADIENT
+
+
 def test_a_k_epsilon_model_gets_epsilon_from_the_same_free_stream_and_its_own_wall_function(tmp_path):
     from foamlib import FoamFile
 

@@ -48,6 +48,18 @@ def test_without_a_y_shift_the_background_grid_mirrors_about_the_centre_plane(tm
     assert y0 == pytest.approx(-design.half_width + design.base_cell / 3)  # default: a third of a cell
 
 
+def test_a_first_layer_resolving_the_wall_is_admitted_by_the_determinant_limit(tmp_path):
+    """snappy refuses cells whose determinant is below minDeterminant; a flat a x a x t cell has about
+    27 (t/a)^2. Wall-function layers keep snappy's usual 0.001; a first layer at y+ = 1 needs a lower limit
+    that its own cells pass, or snappy drops the layers."""
+    design = MeshDesign("coarse", 4.261, 0.476, -2.343, 2.013)
+    assert _snappy_dict(tmp_path / "y50", design)["meshQualityControls"]["minDeterminant"] == 0.001
+    resolved = dataclasses.replace(design, yplus_target=1.0, max_layers=22)
+    limit = _snappy_dict(tmp_path / "y1", resolved)["meshQualityControls"]["minDeterminant"]
+    first_cell = 27.0 * (resolved.layers().first_thickness / resolved.hull_cell) ** 2
+    assert limit < first_cell < 0.001
+
+
 def test_thin_parts_can_take_fewer_prism_layers_than_the_hull(tmp_path):
     design = dataclasses.replace(MeshDesign("coarse", 4.261, 0.476, -2.343, 2.013), thin_max_layers=5)
     layers = _snappy_dict(tmp_path, design)["addLayersControls"]["layers"]

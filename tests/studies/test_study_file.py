@@ -71,6 +71,8 @@ def test_run_order_starts_straight_and_moves_outward():
         (GOOD + "\n[fit]\nmax_angle_deg = -4\n", "max_angle_deg = -4 must be a positive angle"),
         (GOOD + '\n[fit]\nmax_angle_deg = "small"\n', "max_angle_deg = 'small' must be a positive angle"),
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nturbulence_model = "kEpsilonQCR"'), r"\.toml: unknown turbulence model 'kEpsilonQCR'"),
+        (GOOD.replace('level = "coarse"', 'level = "coarse"\nlimit_pressure_gradient = "yes"'),
+         "limit_pressure_gradient = 'yes' must be true or false"),
         ("[study\nbody=", "not valid TOML"),
     ],
 )
@@ -161,3 +163,13 @@ def test_another_turbulence_model_keeps_its_conditions_apart_on_the_same_mesh(tm
     assert shih.case_dir(straight).parent.name == "conditions-ShihQuadraticKE"
     assert sst.case_dir(straight).parent.name == "conditions"
     assert shih.case_settings(shih.workspace.body("AFF-1")).turbulence_model == "ShihQuadraticKE"
+
+
+def test_a_limited_pressure_gradient_keeps_its_conditions_apart_on_the_same_mesh(tmp_path):
+    plain = Study.load(write(tmp_path, GOOD))
+    limited = Study.load(write(tmp_path, GOOD.replace('level = "coarse"', 'level = "coarse"\nlimit_pressure_gradient = true')))
+    straight = Condition(plain.speed)
+    assert limited.workspace.mesh_dir == plain.workspace.mesh_dir
+    assert limited.case_dir(straight).parent.name == "conditions-limited-grad-p"
+    assert limited.case_settings(limited.workspace.body("AFF-1")).limit_pressure_gradient
+    assert not plain.case_settings(plain.workspace.body("AFF-1")).limit_pressure_gradient

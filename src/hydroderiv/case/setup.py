@@ -49,6 +49,7 @@ class CaseSettings:
     first_order_start: int = 80
     method: str = "hybrid"  # frame method, see hydroderiv.case.frames
     turbulence_model: str = DEFAULT_TURBULENCE_MODEL  # see hydroderiv.case.fluid.TURBULENCE_MODELS
+    limit_pressure_gradient: bool = False  # see hydroderiv.case.numerics.LIMITED_PRESSURE_GRADIENT
 
     def second_order_from(self, warm_start: Path | None) -> int | None:
         """The iteration at which second-order convection starts, or None if the case starts with it."""
@@ -310,7 +311,8 @@ def write_condition_case(
     frame = frame_setup(condition, settings.length, settings.method)
     _link_mesh(case, mesh_case, whole_domain_zone=frame.whole_domain_rotates)
     _write_control(case, settings)
-    write_numerics(case, settings.second_order and settings.second_order_from(warm_start) is None)
+    write_numerics(case, settings.second_order and settings.second_order_from(warm_start) is None,
+                   limit_pressure_gradient=settings.limit_pressure_gradient)
     write_decomposition(case, settings.n_procs)
     _write_physics(case, frame, settings)
     n_cells = mesh_cell_count(mesh_case / "constant/polyMesh") if warm_start is not None else None

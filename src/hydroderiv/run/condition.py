@@ -144,6 +144,7 @@ def run_condition(
         "warm_start": str(warm_start) if warm_start else None,
         # None: second-order convection from the first iteration (or switched before an interruption)
         "second_order_from": second_order_from,
+        "limited_pressure_gradient": settings.limit_pressure_gradient,
         "n_procs": n,
         "coefficients": dict(zip(COEFFICIENT_NAMES, map(float, result.coefficients))),
         "force_N": (result.coefficients[:3] * force_scale).tolist(),

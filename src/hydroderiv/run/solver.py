@@ -15,7 +15,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..case.numerics import write_numerics
+from ..case.numerics import switch_to_second_order_convection
 from ..errors import HydroderivError
 from ..forces import PrimeScales, read_history
 from .monitor import ConvergenceCriterion, LogWatcher, force_divergence
@@ -94,8 +94,8 @@ def run_steady(
     objects, and, for ``n_procs > 1``, decomposed). The log is ``case/log.simpleFoam``.
 
     With ``second_order_from``, the case starts with first-order convection: at that iteration its
-    fvSchemes is rewritten to second order (simpleFoam re-reads it), and convergence is judged only on a
-    full window of second-order iterations.
+    convection schemes are switched to second order (simpleFoam re-reads fvSchemes), and convergence is
+    judged only on a full window of second-order iterations.
     """
     case = Path(case)
     (case / STOP_FILE).unlink(missing_ok=True)
@@ -131,7 +131,7 @@ def run_steady(
                 if finished:
                     break
                 if switch_pending and watcher.iteration >= second_order_from:
-                    write_numerics(case, second_order=True)
+                    switch_to_second_order_convection(case)
                     switch_pending = False
                 if not stop_requested and judged(iterations) and criterion.is_met(iterations, coefficients):
                     (case / STOP_FILE).touch()

@@ -63,7 +63,8 @@ from ..run.solver import Progress
 from .workspace import Workspace, is_suboff
 
 FAILED_FILE = "failed.json"
-STUDY_KEYS = {"body", "body_dir", "level", "speed", "speed_knots", "n_procs", "work", "method", "turbulence_model"}
+STUDY_KEYS = {"body", "body_dir", "level", "speed", "speed_knots", "n_procs", "work", "method", "turbulence_model",
+              "limit_pressure_gradient"}
 
 
 def running_marker(case: Path) -> Path:
@@ -89,6 +90,7 @@ class Study:
     fit_offset: bool = True
     max_angle_deg: float | None = None  # static fits use the points within this angle (None: all)
     mesh_options: tuple[tuple[str, float | bool], ...] = ()  # the [mesh] table: MeshDesign fields, as (name, value)
+    limit_pressure_gradient: bool = False  # for meshes that resolve the wall, see case/numerics.py
 
     @classmethod
     def load(cls, path: str | Path) -> Study:
@@ -128,6 +130,9 @@ class Study:
         bad_keys = set(head) - STUDY_KEYS
         if bad_keys:
             raise ConfigurationError(f"{path}: unknown [study] key(s) {', '.join(sorted(bad_keys))}")
+        limit_pressure_gradient = head.get("limit_pressure_gradient", False)
+        if not isinstance(limit_pressure_gradient, bool):
+            raise ConfigurationError(f"{path}: [study] limit_pressure_gradient = {limit_pressure_gradient!r} must be true or false")
         allowed = {f.name for f in fields(ConvergenceCriterion)}
         conv = data.get("convergence", {})
         if set(conv) - allowed:
@@ -158,17 +163,20 @@ class Study:
             fit_offset=bool(fit.get("offset", True)),
             max_angle_deg=None if max_angle is None else float(max_angle),
             mesh_options=tuple(sorted(mesh_options(data.get("mesh", {}), str(path)).items())),
+            limit_pressure_gradient=limit_pressure_gradient,
         )
 
     @property
     def workspace(self) -> Workspace:
-        return Workspace(self.work, self.level, self.method, self.mesh_options, self.turbulence_model)
+        return Workspace(self.work, self.level, self.method, self.mesh_options, self.turbulence_model,
+                         self.limit_pressure_gradient)
 
     def case_settings(self, body: Body) -> CaseSettings:
         """What every condition of this study needs besides the condition itself."""
         return CaseSettings(length=body.reference.length, components=body.component_names, n_procs=self.n_procs,
                             max_iterations=self.criterion.max_iterations, method=self.method,
-                            turbulence_model=self.turbulence_model)
+                            turbulence_model=self.turbulence_model,
+                            limit_pressure_gradient=self.limit_pressure_gradient)
 
     def case_dir(self, condition: Condition) -> Path:
         """Where ``condition`` runs. Without rotation both frame methods are the same translation, so a

@@ -8,6 +8,7 @@
     <work>/conditions-<model>/  the same with another turbulence model than k-omega SST (their fields
                                 differ, and a finished result must never stand for another model's);
                                 conditions-classic-<model>/ for both
+    <work>/conditions-...-limited-grad-p/  the same with the pressure gradient limited
 """
 
 from __future__ import annotations
@@ -30,6 +31,7 @@ class Workspace:
     method: str = "hybrid"
     mesh_options: tuple[tuple[str, float | bool], ...] = ()  # MeshDesign fields set by the user, as (name, value)
     turbulence_model: str = DEFAULT_TURBULENCE_MODEL
+    limit_pressure_gradient: bool = False
 
     @property
     def geometry_dir(self) -> Path:
@@ -41,7 +43,8 @@ class Workspace:
 
     def condition_dir(self, name: str) -> Path:
         folder = "conditions" + (f"-{self.method}" if self.method != "hybrid" else "") + (
-            f"-{self.turbulence_model}" if self.turbulence_model != DEFAULT_TURBULENCE_MODEL else "")
+            f"-{self.turbulence_model}" if self.turbulence_model != DEFAULT_TURBULENCE_MODEL else "") + (
+            "-limited-grad-p" if self.limit_pressure_gradient else "")
         return self.root / folder / name
 
     def body(self, config: str | None = None, body_dir: str | Path | None = None) -> Body:
