@@ -104,6 +104,13 @@ def test_mixed_set_ups_and_missing_levels_are_named():
     with pytest.raises(ConfigurationError, match="turbulence_model"):
         grid_convergence(tables, magnitude="0.1")
     tables = three_tables()
+    tables["fine.json"]["meta"]["limited_pressure_gradient"] = True
+    with pytest.raises(ConfigurationError, match="limited_pressure_gradient"):
+        grid_convergence(tables, magnitude="0.1")
+    tables["fine.json"]["meta"]["limited_pressure_gradient"] = False
+    tables["medium.json"]["meta"]["limited_pressure_gradient"] = False
+    grid_convergence(tables, magnitude="0.1")  # the coarse table predates the key: it was unlimited
+    tables = three_tables()
     tables["medium.json"]["meta"]["level"] = "fine"
     with pytest.raises(ConfigurationError, match="both on the fine mesh"):
         grid_convergence(tables)

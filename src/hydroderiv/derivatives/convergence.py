@@ -160,8 +160,10 @@ class ConvergenceRow:
         return record
 
 
-# What must be the same in the three tables of a grid study (their meta), apart from the mesh level.
-_SAME_SET_UP = ("body", "turbulence_model", "method", "speed_m_s")
+# What must be the same in the three tables of a grid study (their meta), apart from the mesh level, with
+# the value a table written before the key existed stands for (None: no default).
+_SAME_SET_UP = {"body": None, "turbulence_model": None, "method": None, "speed_m_s": None,
+                "limited_pressure_gradient": False}
 
 
 def _table_value(table: dict, name: str, magnitude: str | None, source: str) -> tuple[float, float | None]:
@@ -198,10 +200,11 @@ def grid_convergence(tables: dict[str, dict], magnitude: str | None = None) -> l
         by_level[level] = (source, table)
     (first_source, first), *others = by_level.values()
     for source, table in others:
-        for key in _SAME_SET_UP:
-            if table["meta"].get(key) != first["meta"].get(key):
-                raise ConfigurationError(f"{source} and {first_source} differ in {key} ({table['meta'].get(key)!r} "
-                                         f"against {first['meta'].get(key)!r}): not one grid study")
+        for key, default in _SAME_SET_UP.items():
+            theirs, ours = table["meta"].get(key, default), first["meta"].get(key, default)
+            if theirs != ours:
+                raise ConfigurationError(f"{source} and {first_source} differ in {key} ({theirs!r} "
+                                         f"against {ours!r}): not one grid study")
         if magnitude is None and table["meta"].get("fit") != first["meta"].get("fit"):
             raise ConfigurationError(f"{source} and {first_source} fit their sweeps differently; compare single points "
                                      "with a magnitude instead (e.g. 0.1 for r' = 0.1)")
