@@ -134,3 +134,16 @@ def test_grid_convergence_of_three_committed_style_tables(tmp_path, capsys):
     assert "grid convergence" in capsys.readouterr().out
     assert main(["convergence", paths[0], paths[1], str(tmp_path / "missing.json")]) == 2
     assert "missing.json: no such derivative table" in capsys.readouterr().out
+
+
+@pytest.mark.parametrize("text, message", [("{not json", "not JSON"), ("[1, 2]", "not a derivative table")])
+def test_a_broken_table_is_named_by_refit_and_grid_convergence(tmp_path, capsys, text, message):
+    from pathlib import Path
+
+    study = Path(__file__).parent.parent / "studies/aff8-medium.toml"
+    bad = tmp_path / "broken.json"
+    bad.write_text(text)
+    assert main(["derivatives", str(study), "--conditions", str(bad)]) == 2
+    assert f"broken.json: {message}" in capsys.readouterr().out
+    assert main(["convergence", str(bad), str(bad), str(bad)]) == 2
+    assert f"broken.json: {message}" in capsys.readouterr().out

@@ -178,15 +178,25 @@ def _study_flow(args: argparse.Namespace) -> int:
     return 0
 
 
+def _read_table(path: Path) -> dict:
+    """A derivative table JSON written by `study run` or `derivatives`, with errors that name the file."""
+    try:
+        table = json.loads(path.read_text())
+    except FileNotFoundError:
+        raise HydroderivError(f"{path}: no such derivative table") from None
+    except json.JSONDecodeError as error:
+        raise HydroderivError(f"{path}: not JSON ({error})") from None
+    if not isinstance(table, dict):
+        raise HydroderivError(f"{path}: not a derivative table (a JSON object)")
+    return table
+
+
 def _conditions_of_table(path: Path) -> list[dict]:
     """The condition records a derivative table JSON carries, so that a committed table can be refitted
     (another nonlinear term, a new column) without the study's work directory."""
-    try:
-        conditions = json.loads(path.read_text())["conditions"]
-    except FileNotFoundError:
-        raise HydroderivError(f"{path}: no such derivative table") from None
-    except (json.JSONDecodeError, KeyError, TypeError):
-        raise HydroderivError(f"{path}: not a derivative table with a 'conditions' list") from None
+    conditions = _read_table(path).get("conditions")
+    if not isinstance(conditions, list):
+        raise HydroderivError(f"{path}: not a derivative table with a 'conditions' list")
     return conditions
 
 
@@ -237,14 +247,7 @@ def _derivatives(args: argparse.Namespace) -> int:
 def _convergence(args: argparse.Namespace) -> int:
     from .derivatives.convergence import grid_convergence
 
-    tables = {}
-    for name in args.tables:
-        try:
-            tables[name] = json.loads(Path(name).read_text())
-        except FileNotFoundError:
-            raise HydroderivError(f"{name}: no such derivative table") from None
-        except json.JSONDecodeError as error:
-            raise HydroderivError(f"{name}: not JSON ({error})") from None
+    tables = {name: _read_table(Path(name)) for name in args.tables}
     rows = grid_convergence(tables, args.magnitude)
     meta = next(iter(tables.values()))["meta"]
     what = "fitted slopes" if args.magnitude is None else f"single points at {args.magnitude}"
