@@ -52,6 +52,30 @@ def test_a_limited_pressure_gradient_survives_the_switch_to_second_order(tmp_pat
             assert " ".join(map(str, grad["grad(p)"])) == LIMITED_PRESSURE_GRADIENT
 
 
+def test_a_pressure_gradient_limited_at_the_start_is_limited_in_a_cold_start_only_and_dropped_at_the_switch(tmp_path):
+    from foamlib import FoamFile
+
+    from hydroderiv.case import Condition
+    from hydroderiv.case.numerics import switch_to_second_order_convection
+    from hydroderiv.case.setup import CaseSettings, write_condition_case
+    from hydroderiv.errors import ConfigurationError
+
+    settings = CaseSettings(length=4.261, components=("hull",), limit_pressure_gradient_at_start=True)
+    mesh = tmp_path / "mesh"
+    (mesh / "constant/polyMesh").mkdir(parents=True)
+    cold = write_condition_case(tmp_path / "cold", mesh, Condition(speed=3.344), settings)
+    assert "grad(p)" in FoamFile(cold / "system/fvSchemes")["gradSchemes"]
+    # what the run loop does at the switch: the choice from then on is the lasting one, unlimited
+    switch_to_second_order_convection(cold, settings.limit_pressure_gradient)
+    assert "grad(p)" not in FoamFile(cold / "system/fvSchemes")["gradSchemes"]
+    # a warm start runs second order from its first iteration, so it is never limited
+    assert settings.second_order_from(tmp_path) is None
+    assert not settings.pressure_gradient_limited_from_start(tmp_path)
+    assert settings.pressure_gradient_limited_from_start(None)
+    with pytest.raises(ConfigurationError, match="either always or at the start"):
+        CaseSettings(length=4.261, components=("hull",), limit_pressure_gradient=True, limit_pressure_gradient_at_start=True)
+
+
 def test_a_k_epsilon_model_gets_epsilon_from_the_same_free_stream_and_its_own_wall_function(tmp_path):
     from foamlib import FoamFile
 

@@ -16,7 +16,9 @@ pytestmark = pytest.mark.openfoam
 def straight(coarse_bare_hull, tmp_path_factory):
     mesh_case, _ = coarse_bare_hull
     case = tmp_path_factory.mktemp("run") / "straight"
-    settings = CaseSettings(length=4.261, components=("hull",), n_procs=2, max_iterations=600)
+    # the pressure gradient limited during the first-order start only: the converged run is the unlimited one
+    settings = CaseSettings(length=4.261, components=("hull",), n_procs=2, max_iterations=600,
+                            limit_pressure_gradient_at_start=True)
     progress = []
     record = run_condition(case, mesh_case, Condition(speed=3.344), settings, ConvergenceCriterion(min_iterations=120),
                            on_progress=progress.append)
@@ -51,8 +53,13 @@ def test_a_cold_start_switches_to_second_order_and_converges_on_it(straight):
     from hydroderiv.case.numerics import has_second_order_convection
 
     case, record, _, settings = straight
+    from foamlib import FoamFile
+
     assert record["second_order_from"] == settings.first_order_start
     assert has_second_order_convection(case)
+    # the limiter of the first-order start went with it
+    assert record["limited_pressure_gradient_at_start"] and not record["limited_pressure_gradient"]
+    assert "grad(p)" not in FoamFile(case / "system/fvSchemes")["gradSchemes"]
     log = (case / "log.simpleFoam").read_text()
     # simpleFoam picked up the rewritten schemes after the first-order iterations
     assert log.index("Re-reading object fvSchemes") > log.index(f"\nTime = {settings.first_order_start}\n")
@@ -78,6 +85,7 @@ def test_a_warm_start_from_the_converged_solution_stays_on_it(straight, coarse_b
     warm = run_condition(tmp_path / "warm", coarse_bare_hull[0], Condition(speed=3.344), settings,
                          ConvergenceCriterion(min_iterations=120), warm_start=latest_time_dir(case))
     assert warm["second_order_from"] is None  # a warm start needs no first-order iterations
+    assert not warm["limited_pressure_gradient_at_start"]  # nor the start's limiter
     first_ux = float(re.search(r"Solving for Ux, Initial residual = ([^,]+),", (tmp_path / "warm/log.simpleFoam").read_text())[1])
     assert first_ux < 1e-2  # a cold start begins at 1
     assert warm["force_N"][0] == pytest.approx(record["force_N"][0], rel=0.01)

@@ -72,7 +72,7 @@ def test_run_order_starts_straight_and_moves_outward():
         (GOOD + '\n[fit]\nmax_angle_deg = "small"\n', "max_angle_deg = 'small' must be a positive angle"),
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nturbulence_model = "kEpsilonQCR"'), r"\.toml: unknown turbulence model 'kEpsilonQCR'"),
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nlimit_pressure_gradient = "yes"'),
-         "limit_pressure_gradient = 'yes' must be true or false"),
+         "limit_pressure_gradient = 'yes' must be true, false or \"start\""),
         ("[study\nbody=", "not valid TOML"),
     ],
 )
@@ -173,3 +173,13 @@ def test_a_limited_pressure_gradient_keeps_its_conditions_apart_on_the_same_mesh
     assert limited.case_dir(straight).parent.name == "conditions-limited-grad-p"
     assert limited.case_settings(limited.workspace.body("AFF-1")).limit_pressure_gradient
     assert not plain.case_settings(plain.workspace.body("AFF-1")).limit_pressure_gradient
+
+
+def test_a_pressure_gradient_limited_at_the_start_shares_the_unlimited_conditions(tmp_path):
+    """Limited only during a cold start's first-order iterations, a run converges to the unlimited solution."""
+    plain = Study.load(write(tmp_path, GOOD))
+    at_start = Study.load(write(tmp_path, GOOD.replace('level = "coarse"', 'level = "coarse"\nlimit_pressure_gradient = "start"')))
+    straight = Condition(plain.speed)
+    assert at_start.case_dir(straight) == plain.case_dir(straight)
+    settings = at_start.case_settings(at_start.workspace.body("AFF-1"))
+    assert settings.limit_pressure_gradient_at_start and not settings.limit_pressure_gradient

@@ -50,6 +50,9 @@ class CaseSettings:
     method: str = "hybrid"  # frame method, see hydroderiv.case.frames
     turbulence_model: str = DEFAULT_TURBULENCE_MODEL  # see hydroderiv.case.fluid.TURBULENCE_MODELS
     limit_pressure_gradient: bool = False  # see hydroderiv.case.numerics.LIMITED_PRESSURE_GRADIENT
+    # Limit it only during a cold start's first-order iterations (see the same place); a warm start and
+    # everything after the switch to second order run unlimited.
+    limit_pressure_gradient_at_start: bool = False
 
     def second_order_from(self, warm_start: Path | None) -> int | None:
         """The iteration at which second-order convection starts, or None if the case starts with it."""
@@ -57,7 +60,14 @@ class CaseSettings:
             return self.first_order_start
         return None
 
+    def pressure_gradient_limited_from_start(self, warm_start: Path | None) -> bool:
+        """Whether the case starts with the pressure gradient limited."""
+        at_start = self.limit_pressure_gradient_at_start and self.second_order_from(warm_start) is not None
+        return self.limit_pressure_gradient or at_start
+
     def __post_init__(self):
+        if self.limit_pressure_gradient and self.limit_pressure_gradient_at_start:
+            raise ConfigurationError("limit the pressure gradient either always or at the start, not both")
         if self.method not in FRAME_METHODS:
             raise ConfigurationError(f"unknown frame method {self.method!r}; choose one of {', '.join(FRAME_METHODS)}")
         check_turbulence_model(self.turbulence_model)
@@ -312,7 +322,7 @@ def write_condition_case(
     _link_mesh(case, mesh_case, whole_domain_zone=frame.whole_domain_rotates)
     _write_control(case, settings)
     write_numerics(case, settings.second_order and settings.second_order_from(warm_start) is None,
-                   limit_pressure_gradient=settings.limit_pressure_gradient)
+                   limit_pressure_gradient=settings.pressure_gradient_limited_from_start(warm_start))
     write_decomposition(case, settings.n_procs)
     _write_physics(case, frame, settings)
     n_cells = mesh_cell_count(mesh_case / "constant/polyMesh") if warm_start is not None else None

@@ -125,7 +125,7 @@ def run_condition(
     else:
         second_order_from = settings.second_order_from(warm_start)
     result = run_steady(case, scales, settings.components, criterion, n, on_progress,
-                        second_order_from=second_order_from)
+                        second_order_from=second_order_from, limit_pressure_gradient=settings.limit_pressure_gradient)
     if n > 1:
         run_application(case, ["reconstructPar", "-latestTime"], log_name="reconstructPar")
         for processor in case.glob("processor*"):
@@ -145,6 +145,9 @@ def run_condition(
         # None: second-order convection from the first iteration (or switched before an interruption)
         "second_order_from": second_order_from,
         "limited_pressure_gradient": settings.limit_pressure_gradient,
+        # limited during the first-order start only, so the converged solution is the unlimited one
+        "limited_pressure_gradient_at_start": settings.pressure_gradient_limited_from_start(warm_start)
+        and not settings.limit_pressure_gradient,
         "n_procs": n,
         "coefficients": dict(zip(COEFFICIENT_NAMES, map(float, result.coefficients))),
         "force_N": (result.coefficients[:3] * force_scale).tolist(),

@@ -87,6 +87,7 @@ def run_steady(
     on_progress: Callable[[Progress], None] | None = None,
     poll_seconds: float = 1.0,
     second_order_from: int | None = None,
+    limit_pressure_gradient: bool | None = None,
 ) -> RunResult:
     """Run simpleFoam in ``case`` until the forces converge; raise :class:`SolverDivergedError` on divergence.
 
@@ -95,7 +96,8 @@ def run_steady(
 
     With ``second_order_from``, the case starts with first-order convection: at that iteration its
     convection schemes are switched to second order (simpleFoam re-reads fvSchemes), and convergence is
-    judged only on a full window of second-order iterations.
+    judged only on a full window of second-order iterations. ``limit_pressure_gradient`` is the
+    pressure-gradient choice after the switch (None keeps the case's).
     """
     case = Path(case)
     (case / STOP_FILE).unlink(missing_ok=True)
@@ -131,7 +133,7 @@ def run_steady(
                 if finished:
                     break
                 if switch_pending and watcher.iteration >= second_order_from:
-                    switch_to_second_order_convection(case)
+                    switch_to_second_order_convection(case, limit_pressure_gradient)
                     switch_pending = False
                 if not stop_requested and judged(iterations) and criterion.is_met(iterations, coefficients):
                     (case / STOP_FILE).touch()

@@ -91,6 +91,9 @@ class Study:
     max_angle_deg: float | None = None  # static fits use the points within this angle (None: all)
     mesh_options: tuple[tuple[str, float | bool], ...] = ()  # the [mesh] table: MeshDesign fields, as (name, value)
     limit_pressure_gradient: bool = False  # for meshes that resolve the wall, see case/numerics.py
+    # ... or only while a cold start runs first order ("start" in the study file); such runs converge to
+    # the unlimited solution and share the unlimited conditions
+    limit_pressure_gradient_at_start: bool = False
 
     @classmethod
     def load(cls, path: str | Path) -> Study:
@@ -131,8 +134,9 @@ class Study:
         if bad_keys:
             raise ConfigurationError(f"{path}: unknown [study] key(s) {', '.join(sorted(bad_keys))}")
         limit_pressure_gradient = head.get("limit_pressure_gradient", False)
-        if not isinstance(limit_pressure_gradient, bool):
-            raise ConfigurationError(f"{path}: [study] limit_pressure_gradient = {limit_pressure_gradient!r} must be true or false")
+        if not isinstance(limit_pressure_gradient, bool) and limit_pressure_gradient != "start":
+            raise ConfigurationError(f"{path}: [study] limit_pressure_gradient = {limit_pressure_gradient!r} must be "
+                                     "true, false or \"start\" (limited during a cold start's first-order iterations only)")
         allowed = {f.name for f in fields(ConvergenceCriterion)}
         conv = data.get("convergence", {})
         if set(conv) - allowed:
@@ -163,7 +167,8 @@ class Study:
             fit_offset=bool(fit.get("offset", True)),
             max_angle_deg=None if max_angle is None else float(max_angle),
             mesh_options=tuple(sorted(mesh_options(data.get("mesh", {}), str(path)).items())),
-            limit_pressure_gradient=limit_pressure_gradient,
+            limit_pressure_gradient=limit_pressure_gradient is True,
+            limit_pressure_gradient_at_start=limit_pressure_gradient == "start",
         )
 
     @property
@@ -176,7 +181,8 @@ class Study:
         return CaseSettings(length=body.reference.length, components=body.component_names, n_procs=self.n_procs,
                             max_iterations=self.criterion.max_iterations, method=self.method,
                             turbulence_model=self.turbulence_model,
-                            limit_pressure_gradient=self.limit_pressure_gradient)
+                            limit_pressure_gradient=self.limit_pressure_gradient,
+                            limit_pressure_gradient_at_start=self.limit_pressure_gradient_at_start)
 
     def case_dir(self, condition: Condition) -> Path:
         """Where ``condition`` runs. Without rotation both frame methods are the same translation, so a
