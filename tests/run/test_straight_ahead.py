@@ -50,11 +50,11 @@ def test_forces_stopped_the_run_not_an_iteration_count(straight):
 
 
 def test_a_cold_start_switches_to_second_order_and_converges_on_it(straight):
+    from foamlib import FoamFile
+
     from hydroderiv.case.numerics import has_second_order_convection
 
     case, record, _, settings = straight
-    from foamlib import FoamFile
-
     assert record["second_order_from"] == settings.first_order_start
     assert has_second_order_convection(case)
     # the limiter of the first-order start went with it
