@@ -37,14 +37,18 @@ def test_a_limited_pressure_gradient_survives_the_switch_to_second_order(tmp_pat
     drop it, and a case set up without it stays without it."""
     from foamlib import FoamFile
 
+    from hydroderiv.case import Condition
     from hydroderiv.case.numerics import (LIMITED_PRESSURE_GRADIENT, has_second_order_convection,
-                                          switch_to_second_order_convection, write_numerics)
+                                          switch_to_second_order_convection)
+    from hydroderiv.case.setup import CaseSettings, write_condition_case
 
+    mesh = tmp_path / "mesh"
+    (mesh / "constant/polyMesh").mkdir(parents=True)
     for limited in (True, False):
-        case = tmp_path / str(limited)
-        (case / "system").mkdir(parents=True)
-        write_numerics(case, second_order=False, limit_pressure_gradient=limited)
-        switch_to_second_order_convection(case)
+        settings = CaseSettings(length=4.261, components=("hull",), limit_pressure_gradient=limited)
+        case = write_condition_case(tmp_path / str(limited), mesh, Condition(speed=3.344), settings)  # a cold start
+        assert not has_second_order_convection(case)
+        switch_to_second_order_convection(case, settings.limit_pressure_gradient)  # as the run loop does
         assert has_second_order_convection(case)
         grad = FoamFile(case / "system/fvSchemes")["gradSchemes"]
         assert ("grad(p)" in grad) is limited
@@ -70,8 +74,8 @@ def test_a_pressure_gradient_limited_at_the_start_is_limited_in_a_cold_start_onl
     assert "grad(p)" not in FoamFile(cold / "system/fvSchemes")["gradSchemes"]
     # a warm start runs second order from its first iteration, so it is never limited
     assert settings.second_order_from(tmp_path) is None
-    assert not settings.pressure_gradient_limited_from_start(tmp_path)
-    assert settings.pressure_gradient_limited_from_start(None)
+    assert not settings.limits_pressure_gradient_only_at_start(tmp_path)
+    assert settings.limits_pressure_gradient_only_at_start(None)
     with pytest.raises(ConfigurationError, match="either always or at the start"):
         CaseSettings(length=4.261, components=("hull",), limit_pressure_gradient=True, limit_pressure_gradient_at_start=True)
 

@@ -75,16 +75,9 @@ def write_numerics(case: Path, second_order: bool = True, limit_pressure_gradien
     )
 
 
-def switch_to_second_order_convection(case: Path, limit_pressure_gradient: bool | None = None) -> None:
-    """Rewrite the case's numerics with second-order convection (simpleFoam re-reads them).
-
-    ``limit_pressure_gradient`` is the pressure-gradient choice from here on; None keeps the one the case
-    has (a case set up before the choice could change at the switch).
-    """
-    from foamlib import FoamFile
-
-    if limit_pressure_gradient is None:
-        limit_pressure_gradient = "grad(p)" in FoamFile(Path(case) / "system/fvSchemes")["gradSchemes"]
+def switch_to_second_order_convection(case: Path, limit_pressure_gradient: bool) -> None:
+    """Rewrite the case's numerics with second-order convection (simpleFoam re-reads them) and the
+    pressure-gradient choice that holds from here on (CaseSettings.limit_pressure_gradient)."""
     write_numerics(case, second_order=True, limit_pressure_gradient=limit_pressure_gradient)
 
 

@@ -60,10 +60,9 @@ class CaseSettings:
             return self.first_order_start
         return None
 
-    def pressure_gradient_limited_from_start(self, warm_start: Path | None) -> bool:
-        """Whether the case starts with the pressure gradient limited."""
-        at_start = self.limit_pressure_gradient_at_start and self.second_order_from(warm_start) is not None
-        return self.limit_pressure_gradient or at_start
+    def limits_pressure_gradient_only_at_start(self, warm_start: Path | None) -> bool:
+        """Whether the case starts with the pressure gradient limited until the switch to second order."""
+        return self.limit_pressure_gradient_at_start and self.second_order_from(warm_start) is not None
 
     def __post_init__(self):
         if self.limit_pressure_gradient and self.limit_pressure_gradient_at_start:
@@ -322,7 +321,8 @@ def write_condition_case(
     _link_mesh(case, mesh_case, whole_domain_zone=frame.whole_domain_rotates)
     _write_control(case, settings)
     write_numerics(case, settings.second_order and settings.second_order_from(warm_start) is None,
-                   limit_pressure_gradient=settings.pressure_gradient_limited_from_start(warm_start))
+                   limit_pressure_gradient=settings.limit_pressure_gradient
+                   or settings.limits_pressure_gradient_only_at_start(warm_start))
     write_decomposition(case, settings.n_procs)
     _write_physics(case, frame, settings)
     n_cells = mesh_cell_count(mesh_case / "constant/polyMesh") if warm_start is not None else None

@@ -146,8 +146,7 @@ def run_condition(
         "second_order_from": second_order_from,
         "limited_pressure_gradient": settings.limit_pressure_gradient,
         # limited during the first-order start only, so the converged solution is the unlimited one
-        "limited_pressure_gradient_at_start": settings.pressure_gradient_limited_from_start(warm_start)
-        and not settings.limit_pressure_gradient,
+        "limited_pressure_gradient_at_start": settings.limits_pressure_gradient_only_at_start(warm_start),
         "n_procs": n,
         "coefficients": dict(zip(COEFFICIENT_NAMES, map(float, result.coefficients))),
         "force_N": (result.coefficients[:3] * force_scale).tolist(),

@@ -87,7 +87,7 @@ def run_steady(
     on_progress: Callable[[Progress], None] | None = None,
     poll_seconds: float = 1.0,
     second_order_from: int | None = None,
-    limit_pressure_gradient: bool | None = None,
+    limit_pressure_gradient: bool = False,
 ) -> RunResult:
     """Run simpleFoam in ``case`` until the forces converge; raise :class:`SolverDivergedError` on divergence.
 
@@ -97,7 +97,7 @@ def run_steady(
     With ``second_order_from``, the case starts with first-order convection: at that iteration its
     convection schemes are switched to second order (simpleFoam re-reads fvSchemes), and convergence is
     judged only on a full window of second-order iterations. ``limit_pressure_gradient`` is the
-    pressure-gradient choice after the switch (None keeps the case's).
+    pressure-gradient choice after the switch.
     """
     case = Path(case)
     (case / STOP_FILE).unlink(missing_ok=True)
