@@ -48,7 +48,7 @@ def test_a_limited_pressure_gradient_survives_the_switch_to_second_order(tmp_pat
         settings = CaseSettings(length=4.261, components=("hull",), limit_pressure_gradient=limited)
         case = write_condition_case(tmp_path / str(limited), mesh, Condition(speed=3.344), settings)  # a cold start
         assert not has_second_order_convection(case)
-        switch_to_second_order_convection(case, settings.limit_pressure_gradient)  # as the run loop does
+        switch_to_second_order_convection(case, settings.limiters_after_start())  # as the run loop does
         assert has_second_order_convection(case)
         grad = FoamFile(case / "system/fvSchemes")["gradSchemes"]
         assert ("grad(p)" in grad) is limited
@@ -70,7 +70,7 @@ def test_a_pressure_gradient_limited_at_the_start_is_limited_in_a_cold_start_onl
     cold = write_condition_case(tmp_path / "cold", mesh, Condition(speed=3.344), settings)
     assert "grad(p)" in FoamFile(cold / "system/fvSchemes")["gradSchemes"]
     # what the run loop does at the switch: the choice from then on is the lasting one, unlimited
-    switch_to_second_order_convection(cold, settings.limit_pressure_gradient)
+    switch_to_second_order_convection(cold, settings.limiters_after_start())
     assert "grad(p)" not in FoamFile(cold / "system/fvSchemes")["gradSchemes"]
     # a warm start runs second order from its first iteration, so it is never limited
     assert settings.second_order_from(tmp_path) is None
@@ -78,6 +78,44 @@ def test_a_pressure_gradient_limited_at_the_start_is_limited_in_a_cold_start_onl
     assert settings.limits_pressure_gradient_only_at_start(None)
     with pytest.raises(ConfigurationError, match="either always or at the start"):
         CaseSettings(length=4.261, components=("hull",), limit_pressure_gradient=True, limit_pressure_gradient_at_start=True)
+
+
+def test_a_velocity_gradient_limited_for_convection_only_leaves_the_strain_rate_unlimited(tmp_path):
+    """With limit_velocity_gradient = "convection", the linear-upwind reconstruction of U uses a limited
+    gradient of its own, while grad(U) (the turbulence models' strain rate, the viscous stress) is the plain
+    Gauss gradient; the default limits grad(U) itself. Both survive the switch to second order, and the
+    convection order is still recognised."""
+    from foamlib import FoamFile
+
+    from hydroderiv.case import Condition
+    from hydroderiv.case.numerics import (LIMITED_FOR_CONVECTION, LIMITED_GRADIENT, has_second_order_convection,
+                                          switch_to_second_order_convection)
+    from hydroderiv.case.setup import CaseSettings, write_condition_case
+    from hydroderiv.errors import ConfigurationError
+
+    def words(entry):
+        return " ".join(map(str, entry)) if not isinstance(entry, str) else entry
+
+    mesh = tmp_path / "mesh"
+    (mesh / "constant/polyMesh").mkdir(parents=True)
+    for where in ("everywhere", "convection"):
+        settings = CaseSettings(length=4.261, components=("hull",), limit_velocity_gradient=where)
+        case = write_condition_case(tmp_path / where, mesh, Condition(speed=3.344), settings)
+        switch_to_second_order_convection(case, settings.limiters_after_start())
+        assert has_second_order_convection(case)
+        schemes = FoamFile(case / "system/fvSchemes")
+        grad, div = schemes["gradSchemes"], schemes["divSchemes"]
+        if where == "everywhere":
+            assert words(grad["grad(U)"]) == LIMITED_GRADIENT and LIMITED_FOR_CONVECTION not in grad
+            assert words(div["div(phi,U)"]).endswith("linearUpwind grad(U)")
+        else:
+            assert "grad(U)" not in grad and words(grad["default"]) == "Gauss linear"
+            assert words(grad[LIMITED_FOR_CONVECTION]) == LIMITED_GRADIENT
+            assert words(div["div(phi,U)"]).endswith(f"linearUpwind {LIMITED_FOR_CONVECTION}")
+        # the turbulence fields' reconstruction is limited either way
+        assert words(div["div(phi,k)"]).endswith("linearUpwind grad(k)") and words(grad["grad(k)"]) == LIMITED_GRADIENT
+    with pytest.raises(ConfigurationError, match="limit_velocity_gradient = 'nowhere'"):
+        CaseSettings(length=4.261, components=("hull",), limit_velocity_gradient="nowhere")
 
 
 def test_a_k_epsilon_model_gets_epsilon_from_the_same_free_stream_and_its_own_wall_function(tmp_path):

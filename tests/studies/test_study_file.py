@@ -73,6 +73,8 @@ def test_run_order_starts_straight_and_moves_outward():
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nturbulence_model = "kEpsilonQCR"'), r"\.toml: unknown turbulence model 'kEpsilonQCR'"),
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nlimit_pressure_gradient = "yes"'),
          "limit_pressure_gradient = 'yes' must be true, false or \"start\""),
+        (GOOD.replace('level = "coarse"', 'level = "coarse"\nlimit_velocity_gradient = "nowhere"'),
+         r"\.toml: limit_velocity_gradient = 'nowhere' must be one of 'everywhere', 'convection'"),
         ("[study\nbody=", "not valid TOML"),
     ],
 )
@@ -173,6 +175,17 @@ def test_a_limited_pressure_gradient_keeps_its_conditions_apart_on_the_same_mesh
     assert limited.case_dir(straight).parent.name == "conditions-limited-grad-p"
     assert limited.case_settings(limited.workspace.body("AFF-1")).limit_pressure_gradient
     assert not plain.case_settings(plain.workspace.body("AFF-1")).limit_pressure_gradient
+
+
+def test_a_velocity_gradient_limited_in_convection_only_keeps_its_conditions_apart_on_the_same_mesh(tmp_path):
+    plain = Study.load(write(tmp_path, GOOD))
+    text = GOOD.replace('level = "coarse"', 'level = "coarse"\nlimit_velocity_gradient = "convection"\nlimit_pressure_gradient = true')
+    convection = Study.load(write(tmp_path, text))
+    straight = Condition(plain.speed)
+    assert convection.workspace.mesh_dir == plain.workspace.mesh_dir
+    assert convection.case_dir(straight).parent.name == "conditions-limited-grad-p-grad-U-limited-in-convection"
+    assert convection.case_settings(convection.workspace.body("AFF-1")).limit_velocity_gradient == "convection"
+    assert plain.case_settings(plain.workspace.body("AFF-1")).limit_velocity_gradient == "everywhere"
 
 
 def test_a_pressure_gradient_limited_at_the_start_shares_the_unlimited_conditions(tmp_path):

@@ -6,13 +6,16 @@ does not read, so a mesh case and a condition case share one set.
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from pathlib import Path
 
 from .._foam import write_foam_dict
+from ..errors import ConfigurationError
 
 
-SECOND_ORDER = "bounded Gauss linearUpwind grad({})"
+SECOND_ORDER = "bounded Gauss linearUpwind"  # followed by the name of the gradient scheme it reconstructs with
 FIRST_ORDER = "bounded Gauss upwind"
+LIMITED_GRADIENT = "cellLimited Gauss linear 1"  # no face value beyond the neighbouring cells' values
 
 
 # The pressure gradient limited like the others. On a mesh whose first prism layer resolves the wall
@@ -27,32 +30,72 @@ FIRST_ORDER = "bounded Gauss upwind"
 # of drift by 10.5 % (Y'v -0.0229 against -0.0256). A study can therefore limit it only while a cold start
 # runs first order, where the blow-up happens, and drop it when second order takes over
 # (CaseSettings.limit_pressure_gradient_at_start): the converged solution is then the unlimited one.
-LIMITED_PRESSURE_GRADIENT = "cellLimited Gauss linear 1"
+LIMITED_PRESSURE_GRADIENT = LIMITED_GRADIENT
+
+# Where the velocity gradient is limited. "everywhere" (the default, as OpenFOAM's own case templates do):
+# grad(U) is cell-limited for the linear-upwind reconstruction of face velocities and therefore also in
+# every other term that takes grad(U), the turbulence models' strain rate and the viscous stress among
+# them. "convection": the reconstruction alone uses the limited gradient (named LIMITED_FOR_CONVECTION in
+# gradSchemes), which keeps convection bounded, while the strain rate and the stress see the plain
+# gradient. The limiter clips the gradient in cells at a local extremum, such as the suction peaks of
+# the sail and fins, where the pressure-gradient limiter was found to cost side force (above).
+VELOCITY_GRADIENT_LIMITING = ("everywhere", "convection")
+LIMITED_FOR_CONVECTION = "limitedForConvection"
 
 
-def _convection_schemes(second_order: bool) -> dict[str, str]:
-    convection = SECOND_ORDER if second_order else FIRST_ORDER
-    return {f"div(phi,{field})": convection.format(field) for field in ("U", "k", "omega", "epsilon")}
+@dataclass(frozen=True)
+class GradientLimiters:
+    """Which gradients are cell-limited: the pressure gradient (bool), and where the velocity gradient is
+    (one of VELOCITY_GRADIENT_LIMITING)."""
+
+    pressure: bool = False
+    velocity: str = "everywhere"
+
+    def __post_init__(self):
+        check_velocity_gradient_limiting(self.velocity)
 
 
-def write_numerics(case: Path, second_order: bool = True, limit_pressure_gradient: bool = False) -> None:
+def check_velocity_gradient_limiting(value, source: str = "") -> str:
+    """``value`` if it is a place to limit the velocity gradient; else an error naming ``source`` and the choices."""
+    if value not in VELOCITY_GRADIENT_LIMITING:
+        where = f"{source}: " if source else ""
+        raise ConfigurationError(f"{where}limit_velocity_gradient = {value!r} must be one of "
+                                 f"{', '.join(map(repr, VELOCITY_GRADIENT_LIMITING))}")
+    return value
+
+
+def _convection_schemes(second_order: bool, limiters: GradientLimiters) -> dict[str, str]:
+    def scheme(field: str) -> str:
+        if not second_order:
+            return FIRST_ORDER
+        limited_for_convection_only = field == "U" and limiters.velocity == "convection"
+        return f"{SECOND_ORDER} {LIMITED_FOR_CONVECTION if limited_for_convection_only else f'grad({field})'}"
+
+    return {f"div(phi,{field})": scheme(field) for field in ("U", "k", "omega", "epsilon")}
+
+
+def _gradient_schemes(limiters: GradientLimiters) -> dict[str, str]:
+    schemes = {"default": "Gauss linear"}
+    if limiters.velocity == "everywhere":
+        schemes["grad(U)"] = LIMITED_GRADIENT
+    else:
+        schemes[LIMITED_FOR_CONVECTION] = LIMITED_GRADIENT
+    schemes.update({f"grad({field})": LIMITED_GRADIENT for field in ("k", "omega", "epsilon")})
+    if limiters.pressure:
+        schemes["grad(p)"] = LIMITED_PRESSURE_GRADIENT
+    return schemes
+
+
+def write_numerics(case: Path, second_order: bool = True, limiters: GradientLimiters = GradientLimiters()) -> None:
     """fvSchemes and fvSolution. Second-order (bounded linear-upwind) convection for validation runs."""
-    pressure_gradient = {"grad(p)": LIMITED_PRESSURE_GRADIENT} if limit_pressure_gradient else {}
     write_foam_dict(
         Path(case) / "system/fvSchemes",
         {
             "ddtSchemes": {"default": "steadyState"},
-            "gradSchemes": {
-                "default": "Gauss linear",
-                "grad(U)": "cellLimited Gauss linear 1",
-                "grad(k)": "cellLimited Gauss linear 1",
-                "grad(omega)": "cellLimited Gauss linear 1",
-                "grad(epsilon)": "cellLimited Gauss linear 1",
-                **pressure_gradient,
-            },
+            "gradSchemes": _gradient_schemes(limiters),
             "divSchemes": {
                 "default": "none",
-                **_convection_schemes(second_order),
+                **_convection_schemes(second_order, limiters),
                 "div(nonlinearStress)": "Gauss linear",  # the quadratic stresses of ShihQuadraticKE
                 "div((nuEff*dev2(T(grad(U)))))": "Gauss linear",
             },
@@ -75,10 +118,10 @@ def write_numerics(case: Path, second_order: bool = True, limit_pressure_gradien
     )
 
 
-def switch_to_second_order_convection(case: Path, limit_pressure_gradient: bool) -> None:
+def switch_to_second_order_convection(case: Path, limiters: GradientLimiters) -> None:
     """Rewrite the case's numerics with second-order convection (simpleFoam re-reads them) and the
-    pressure-gradient choice that holds from here on (CaseSettings.limit_pressure_gradient)."""
-    write_numerics(case, second_order=True, limit_pressure_gradient=limit_pressure_gradient)
+    gradient limiters that hold from here on (CaseSettings.limiters_after_start)."""
+    write_numerics(case, second_order=True, limiters=limiters)
 
 
 def has_second_order_convection(case: Path) -> bool:
@@ -88,4 +131,4 @@ def has_second_order_convection(case: Path) -> bool:
 
     entry = FoamFile(Path(case) / "system/fvSchemes")["divSchemes"]["div(phi,U)"]
     words = entry.split() if isinstance(entry, str) else [str(word) for word in entry]
-    return words == SECOND_ORDER.format("U").split()
+    return words[:-1] == SECOND_ORDER.split()

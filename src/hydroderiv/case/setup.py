@@ -24,7 +24,7 @@ from ..run.solver import STOP_FILE, TOTAL_FORCES, component_function_name
 from .conditions import Condition
 from .fluid import DEFAULT_TURBULENCE_MODEL, TURBULENCE_MODELS, Fluid, FreestreamTurbulence, check_turbulence_model
 from .frames import FRAME_METHODS, FrameSetup, frame_setup
-from .numerics import write_numerics
+from .numerics import GradientLimiters, check_velocity_gradient_limiting, write_numerics
 from .warm_start import take_internal_field
 
 COMPONENT_INTERVAL = 10  # iterations between per-component force samples
@@ -53,6 +53,7 @@ class CaseSettings:
     # Limit it only during a cold start's first-order iterations (see the same place); a warm start and
     # everything after the switch to second order run unlimited.
     limit_pressure_gradient_at_start: bool = False
+    limit_velocity_gradient: str = "everywhere"  # see hydroderiv.case.numerics.VELOCITY_GRADIENT_LIMITING
 
     def second_order_from(self, warm_start: Path | None) -> int | None:
         """The iteration at which second-order convection starts, or None if the case starts with it."""
@@ -64,12 +65,22 @@ class CaseSettings:
         """Whether the case starts with the pressure gradient limited until the switch to second order."""
         return self.limit_pressure_gradient_at_start and self.second_order_from(warm_start) is not None
 
+    def limiters_at_start(self, warm_start: Path | None) -> GradientLimiters:
+        """The gradient limiters a case starts with."""
+        pressure = self.limit_pressure_gradient or self.limits_pressure_gradient_only_at_start(warm_start)
+        return GradientLimiters(pressure=pressure, velocity=self.limit_velocity_gradient)
+
+    def limiters_after_start(self) -> GradientLimiters:
+        """The gradient limiters from the switch to second-order convection on (and of a warm start)."""
+        return GradientLimiters(pressure=self.limit_pressure_gradient, velocity=self.limit_velocity_gradient)
+
     def __post_init__(self):
         if self.limit_pressure_gradient and self.limit_pressure_gradient_at_start:
             raise ConfigurationError("limit the pressure gradient either always or at the start, not both")
         if self.method not in FRAME_METHODS:
             raise ConfigurationError(f"unknown frame method {self.method!r}; choose one of {', '.join(FRAME_METHODS)}")
         check_turbulence_model(self.turbulence_model)
+        check_velocity_gradient_limiting(self.limit_velocity_gradient)
 
 
 def _vector(v) -> list[float]:
@@ -321,8 +332,7 @@ def write_condition_case(
     _link_mesh(case, mesh_case, whole_domain_zone=frame.whole_domain_rotates)
     _write_control(case, settings)
     write_numerics(case, settings.second_order and settings.second_order_from(warm_start) is None,
-                   limit_pressure_gradient=settings.limit_pressure_gradient
-                   or settings.limits_pressure_gradient_only_at_start(warm_start))
+                   limiters=settings.limiters_at_start(warm_start))
     write_decomposition(case, settings.n_procs)
     _write_physics(case, frame, settings)
     n_cells = mesh_cell_count(mesh_case / "constant/polyMesh") if warm_start is not None else None

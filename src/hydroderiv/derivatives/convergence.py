@@ -163,7 +163,7 @@ class ConvergenceRow:
 # What must be the same in the three tables of a grid study (their meta), apart from the mesh level, with
 # the value a table written before the key existed stands for (None: no default).
 _SAME_SET_UP = {"body": None, "turbulence_model": None, "method": None, "speed_m_s": None,
-                "limited_pressure_gradient": False}
+                "limited_pressure_gradient": False, "limited_velocity_gradient": "everywhere"}
 
 
 def _table_value(table: dict, name: str, magnitude: str | None, source: str) -> tuple[float, float | None]:

@@ -125,7 +125,7 @@ def run_condition(
     else:
         second_order_from = settings.second_order_from(warm_start)
     result = run_steady(case, scales, settings.components, criterion, n, on_progress,
-                        second_order_from=second_order_from, limit_pressure_gradient=settings.limit_pressure_gradient)
+                        second_order_from=second_order_from, limiters_after_switch=settings.limiters_after_start())
     if n > 1:
         run_application(case, ["reconstructPar", "-latestTime"], log_name="reconstructPar")
         for processor in case.glob("processor*"):
@@ -147,6 +147,7 @@ def run_condition(
         "limited_pressure_gradient": settings.limit_pressure_gradient,
         # limited during the first-order start only, so the converged solution is the unlimited one
         "limited_pressure_gradient_at_start": settings.limits_pressure_gradient_only_at_start(warm_start),
+        "limited_velocity_gradient": settings.limit_velocity_gradient,  # everywhere, or in convection only
         "n_procs": n,
         "coefficients": dict(zip(COEFFICIENT_NAMES, map(float, result.coefficients))),
         "force_N": (result.coefficients[:3] * force_scale).tolist(),

@@ -15,7 +15,7 @@ from typing import Callable
 
 import numpy as np
 
-from ..case.numerics import switch_to_second_order_convection
+from ..case.numerics import GradientLimiters, switch_to_second_order_convection
 from ..errors import HydroderivError
 from ..forces import PrimeScales, read_history
 from .monitor import ConvergenceCriterion, LogWatcher, force_divergence
@@ -87,7 +87,7 @@ def run_steady(
     on_progress: Callable[[Progress], None] | None = None,
     poll_seconds: float = 1.0,
     second_order_from: int | None = None,
-    limit_pressure_gradient: bool = False,
+    limiters_after_switch: GradientLimiters = GradientLimiters(),
 ) -> RunResult:
     """Run simpleFoam in ``case`` until the forces converge; raise :class:`SolverDivergedError` on divergence.
 
@@ -96,8 +96,8 @@ def run_steady(
 
     With ``second_order_from``, the case starts with first-order convection: at that iteration its
     convection schemes are switched to second order (simpleFoam re-reads fvSchemes), and convergence is
-    judged only on a full window of second-order iterations. ``limit_pressure_gradient`` is the
-    pressure-gradient choice after the switch.
+    judged only on a full window of second-order iterations. ``limiters_after_switch`` are the
+    gradient limiters after the switch.
     """
     case = Path(case)
     (case / STOP_FILE).unlink(missing_ok=True)
@@ -133,7 +133,7 @@ def run_steady(
                 if finished:
                     break
                 if switch_pending and watcher.iteration >= second_order_from:
-                    switch_to_second_order_convection(case, limit_pressure_gradient)
+                    switch_to_second_order_convection(case, limiters_after_switch)
                     switch_pending = False
                 if not stop_requested and judged(iterations) and criterion.is_met(iterations, coefficients):
                     (case / STOP_FILE).touch()

@@ -51,6 +51,7 @@ from ..case import KNOT, Condition
 from ..case.conditions import SWEEP_KEYS
 from ..case.fluid import DEFAULT_TURBULENCE_MODEL, check_turbulence_model
 from ..case.frames import FRAME_METHODS
+from ..case.numerics import check_velocity_gradient_limiting
 from ..case.setup import CaseSettings, latest_time_dir
 from ..derivatives.fit import NONLINEAR_TERMS
 from ..errors import ConfigurationError, HydroderivError
@@ -64,7 +65,7 @@ from .workspace import Workspace, is_suboff
 
 FAILED_FILE = "failed.json"
 STUDY_KEYS = {"body", "body_dir", "level", "speed", "speed_knots", "n_procs", "work", "method", "turbulence_model",
-              "limit_pressure_gradient"}
+              "limit_pressure_gradient", "limit_velocity_gradient"}
 
 
 def running_marker(case: Path) -> Path:
@@ -94,6 +95,7 @@ class Study:
     # ... or only while a cold start runs first order ("start" in the study file); such runs converge to
     # the unlimited solution and share the unlimited conditions
     limit_pressure_gradient_at_start: bool = False
+    limit_velocity_gradient: str = "everywhere"  # or "convection", see case/numerics.py
 
     @classmethod
     def load(cls, path: str | Path) -> Study:
@@ -169,12 +171,14 @@ class Study:
             mesh_options=tuple(sorted(mesh_options(data.get("mesh", {}), str(path)).items())),
             limit_pressure_gradient=limit_pressure_gradient is True,
             limit_pressure_gradient_at_start=limit_pressure_gradient == "start",
+            limit_velocity_gradient=check_velocity_gradient_limiting(
+                head.get("limit_velocity_gradient", "everywhere"), str(path)),
         )
 
     @property
     def workspace(self) -> Workspace:
         return Workspace(self.work, self.level, self.method, self.mesh_options, self.turbulence_model,
-                         self.limit_pressure_gradient)
+                         self.limit_pressure_gradient, self.limit_velocity_gradient)
 
     def case_settings(self, body: Body) -> CaseSettings:
         """What every condition of this study needs besides the condition itself."""
@@ -182,7 +186,8 @@ class Study:
                             max_iterations=self.criterion.max_iterations, method=self.method,
                             turbulence_model=self.turbulence_model,
                             limit_pressure_gradient=self.limit_pressure_gradient,
-                            limit_pressure_gradient_at_start=self.limit_pressure_gradient_at_start)
+                            limit_pressure_gradient_at_start=self.limit_pressure_gradient_at_start,
+                            limit_velocity_gradient=self.limit_velocity_gradient)
 
     def case_dir(self, condition: Condition) -> Path:
         """Where ``condition`` runs. Without rotation both frame methods are the same translation, so a

@@ -9,6 +9,8 @@
                                 differ, and a finished result must never stand for another model's);
                                 conditions-classic-<model>/ for both
     <work>/conditions-...-limited-grad-p/  the same with the pressure gradient limited
+    <work>/conditions-...-grad-U-limited-in-convection/  the same with the velocity gradient limited in the
+                                convection scheme only (case/numerics.py)
 """
 
 from __future__ import annotations
@@ -32,6 +34,7 @@ class Workspace:
     mesh_options: tuple[tuple[str, float | bool], ...] = ()  # MeshDesign fields set by the user, as (name, value)
     turbulence_model: str = DEFAULT_TURBULENCE_MODEL
     limit_pressure_gradient: bool = False
+    limit_velocity_gradient: str = "everywhere"
 
     @property
     def geometry_dir(self) -> Path:
@@ -44,7 +47,8 @@ class Workspace:
     def condition_dir(self, name: str) -> Path:
         folder = "conditions" + (f"-{self.method}" if self.method != "hybrid" else "") + (
             f"-{self.turbulence_model}" if self.turbulence_model != DEFAULT_TURBULENCE_MODEL else "") + (
-            "-limited-grad-p" if self.limit_pressure_gradient else "")
+            "-limited-grad-p" if self.limit_pressure_gradient else "") + (
+            "-grad-U-limited-in-convection" if self.limit_velocity_gradient == "convection" else "")
         return self.root / folder / name
 
     def body(self, config: str | None = None, body_dir: str | Path | None = None) -> Body:
