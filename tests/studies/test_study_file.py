@@ -73,8 +73,8 @@ def test_run_order_starts_straight_and_moves_outward():
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nturbulence_model = "kEpsilonQCR"'), r"\.toml: unknown turbulence model 'kEpsilonQCR'"),
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nlimit_pressure_gradient = "yes"'),
          "limit_pressure_gradient = 'yes' must be true, false or \"start\""),
-        (GOOD.replace('level = "coarse"', 'level = "coarse"\nlimit_velocity_gradient = "nowhere"'),
-         r"\.toml: limit_velocity_gradient = 'nowhere' must be one of 'everywhere', 'convection'"),
+        (GOOD.replace('level = "coarse"', 'level = "coarse"\nlimit_velocity_gradient = "sometimes"'),
+         r"\.toml: limit_velocity_gradient = 'sometimes' must be one of 'everywhere', 'convection', 'nowhere'"),
         ("[study\nbody=", "not valid TOML"),
     ],
 )

@@ -37,9 +37,11 @@ LIMITED_PRESSURE_GRADIENT = LIMITED_GRADIENT
 # every other term that takes grad(U), the turbulence models' strain rate and the viscous stress among
 # them. "convection": the reconstruction alone uses the limited gradient (named LIMITED_FOR_CONVECTION in
 # gradSchemes), which keeps convection bounded, while the strain rate and the stress see the plain
-# gradient. The limiter clips the gradient in cells at a local extremum, such as the suction peaks of
-# the sail and fins, where the pressure-gradient limiter was found to cost side force (above).
-VELOCITY_GRADIENT_LIMITING = ("everywhere", "convection")
+# gradient. "nowhere": no limiter at all, the reconstruction unbounded (for measuring what the convection
+# limiter costs; a mesh with poor cells may not run with it). The limiter clips the gradient in cells at a
+# local extremum, such as the suction peaks of the sail and fins, where the pressure-gradient limiter was
+# found to cost side force (above).
+VELOCITY_GRADIENT_LIMITING = ("everywhere", "convection", "nowhere")
 LIMITED_FOR_CONVECTION = "limitedForConvection"
 
 
@@ -78,7 +80,7 @@ def _gradient_schemes(limiters: GradientLimiters) -> dict[str, str]:
     schemes = {"default": "Gauss linear"}
     if limiters.velocity == "everywhere":
         schemes["grad(U)"] = LIMITED_GRADIENT
-    else:
+    elif limiters.velocity == "convection":
         schemes[LIMITED_FOR_CONVECTION] = LIMITED_GRADIENT
     schemes.update({f"grad({field})": LIMITED_GRADIENT for field in ("k", "omega", "epsilon")})
     if limiters.pressure:

@@ -10,7 +10,7 @@
                                 conditions-classic-<model>/ for both
     <work>/conditions-...-limited-grad-p/  the same with the pressure gradient limited
     <work>/conditions-...-grad-U-limited-in-convection/  the same with the velocity gradient limited in the
-                                convection scheme only (case/numerics.py)
+                                convection scheme only (case/numerics.py), -unlimited-grad-U/ not at all
 """
 
 from __future__ import annotations
@@ -48,7 +48,8 @@ class Workspace:
         folder = "conditions" + (f"-{self.method}" if self.method != "hybrid" else "") + (
             f"-{self.turbulence_model}" if self.turbulence_model != DEFAULT_TURBULENCE_MODEL else "") + (
             "-limited-grad-p" if self.limit_pressure_gradient else "") + (
-            "-grad-U-limited-in-convection" if self.limit_velocity_gradient == "convection" else "")
+            {"everywhere": "", "convection": "-grad-U-limited-in-convection",
+             "nowhere": "-unlimited-grad-U"}[self.limit_velocity_gradient])
         return self.root / folder / name
 
     def body(self, config: str | None = None, body_dir: str | Path | None = None) -> Body:
