@@ -78,6 +78,25 @@ def test_each_part_drops_its_layers_below_a_quarter_of_its_own_stack(tmp_path):
     assert controls["layers"]["sail"]["minThickness"] < 0.4 * controls["minThickness"]
 
 
+def test_relative_layer_sizes_give_each_part_its_absolute_design_on_its_own_cells(tmp_path):
+    """relative_layer_sizes: snappy scales every thickness with the local cell, so a part's first layer and
+    minimum, times that part's nominal surface cell, must come back to the absolute design."""
+    design = MeshDesign("coarse", 4.261, 0.476, -2.343, 2.013)
+    absolute = _snappy_dict(tmp_path / "absolute", design)["addLayersControls"]
+    relative = _snappy_dict(tmp_path / "relative", dataclasses.replace(design, relative_layer_sizes=True))["addLayersControls"]
+    assert absolute["relativeSizes"] is False and relative["relativeSizes"] is True
+    hull_cell, thin_cell = design.surface_cell_of("hull"), design.surface_cell_of("sail")
+    assert thin_cell == pytest.approx(hull_cell / 2**design.appendage_extra_level)
+    assert relative["firstLayerThickness"] * hull_cell == pytest.approx(absolute["firstLayerThickness"], rel=1e-4)
+    for part, cell in (("hull", hull_cell), ("sail", thin_cell), ("appendage_top", thin_cell)):
+        first = relative["layers"][part].get("firstLayerThickness", relative["firstLayerThickness"])
+        assert first * cell == pytest.approx(design.layers_of(part).first_thickness, rel=1e-4)
+        assert relative["layers"][part]["minThickness"] * cell == pytest.approx(
+            absolute["layers"][part]["minThickness"], rel=1e-3)
+        assert relative["layers"][part]["nSurfaceLayers"] == absolute["layers"][part]["nSurfaceLayers"]
+    assert 0 < relative["firstLayerThickness"] < relative["layers"]["sail"]["firstLayerThickness"] < 1
+
+
 def test_mesh_options_are_checked_and_named(tmp_path):
     from hydroderiv.errors import ConfigurationError
     from hydroderiv.mesh.design import mesh_options

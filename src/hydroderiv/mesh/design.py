@@ -98,6 +98,13 @@ class MeshDesign:
     # before this option existed have the interface as snapped (False).
     interface_on_sphere: bool = True
     yplus_target: float = 50.0
+    # Prism-layer thicknesses relative to the local surface cell (snappy's relativeSizes) instead of absolute.
+    # Absolute, the hull's stack (about 20 mm) is sized for the hull's own surface cells (31 mm coarse) and is
+    # two thirds of a cell or more where the hull's cells are finer, next to the sail and the appendage
+    # roots; snappy drops it there for mesh quality (the coarse AFF-8 hull: 77.7 % of its faces with any
+    # layer). Relative, each part's stack is scaled so that it has its absolute design on that part's
+    # nominal cells, and shrinks with the cells elsewhere (its first cell's y+ with it).
+    relative_layer_sizes: bool = False
     layer_expansion: float = 1.3
     final_layer_fraction: float = 0.3  # final layer thickness over the surface cell size
     max_layers: int = 8
@@ -149,6 +156,11 @@ class MeshDesign:
             return hull
         return dataclasses.replace(hull, count=min(hull.count, self.thin_max_layers))
 
+    def surface_cell_of(self, component: str) -> float:
+        """The nominal surface cell of one body part, m: the hull's, or the thin parts' finer one."""
+        extra = self.appendage_extra_level if is_thin_part(component) else 0
+        return self.cell_at(self.hull_surface_level + extra)
+
     def min_layer_thickness(self, component: str) -> float:
         """Below this total thickness snappy drops a part's layers: a quarter of that part's own stack.
 
@@ -169,7 +181,7 @@ _FROM_THE_BODY = ("level", "length", "body_radius", "body_x_min", "body_x_max", 
 
 # Values MeshDesign fields had before the field existed: a mesh report that lacks one of these was built to
 # this value (other missing fields are not compared, see mesh/snappy.py).
-BEFORE_THE_FIELD = {"interface_on_sphere": False}
+BEFORE_THE_FIELD = {"interface_on_sphere": False, "relative_layer_sizes": False}
 
 _TRUE, _FALSE = ("true", "yes", "on", "1"), ("false", "no", "off", "0")
 

@@ -124,12 +124,35 @@ def _mesh_quality_controls(d: MeshDesign) -> dict:
     return {**base, "relaxed": {"maxNonOrtho": 75}}
 
 
+def _layer_thicknesses(d: MeshDesign, components: tuple[str, ...]) -> dict:
+    """The layer sizes of addLayersControls: absolute (sized for y+), or relative to the local surface cell
+    (MeshDesign.relative_layer_sizes), scaled per part so that each part's nominal cells get the absolute
+    design."""
+    relative = d.relative_layer_sizes
+
+    def size(thickness: float, component: str) -> float:
+        return round(thickness / d.surface_cell_of(component) if relative else thickness, 7)
+
+    layers = {}
+    for c in components:
+        layers[c] = {"nSurfaceLayers": d.layers_of(c).count, "minThickness": size(d.min_layer_thickness(c), c)}
+        if relative:  # a thin part's cells are finer than the hull's, so its relative first layer is thicker
+            layers[c].update(firstLayerThickness=size(d.layers_of(c).first_thickness, c),
+                             expansionRatio=d.layers_of(c).expansion)
+    return {
+        "relativeSizes": relative,
+        "firstLayerThickness": size(d.layers().first_thickness, "hull"),
+        "expansionRatio": d.layers().expansion,
+        "minThickness": size(d.min_layer_thickness("hull"), "hull"),
+        "layers": layers,
+    }
+
+
 def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> None:
     boxes = _refinement_boxes(d)
     hull_level = d.hull_surface_level
     fine_level = hull_level + d.appendage_extra_level
     region_levels = {c: (fine_level if is_thin_part(c) else hull_level) for c in components}
-    layers = d.layers()
     location = _vec(d.location_in_mesh())
     regions = {
         c: {"level": [lv, lv + (d.thin_curvature_levels if is_thin_part(c) else 0)],
@@ -189,14 +212,7 @@ def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> Non
                 "multiRegionFeatureSnap": False,
             },
             "addLayersControls": {
-                "relativeSizes": False,  # absolute first-layer thickness, sized for y+
-                "firstLayerThickness": round(layers.first_thickness, 7),
-                "expansionRatio": layers.expansion,
-                "minThickness": round(d.min_layer_thickness("hull"), 6),
-                "layers": {
-                    c: {"nSurfaceLayers": d.layers_of(c).count, "minThickness": round(d.min_layer_thickness(c), 6)}
-                    for c in components
-                },
+                **_layer_thicknesses(d, components),
                 "nGrow": 0,
                 "featureAngle": 180,
                 "slipFeatureAngle": 30,
