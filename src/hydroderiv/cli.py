@@ -98,6 +98,10 @@ def _mesh(args: argparse.Namespace) -> int:
     table.add_row("design y+ (first cell centre)", f"{report['design_yplus']['first_cell_centre']} at {report['design_yplus']['speed_m_s']} m/s")
     for patch, cover in report["layer_coverage"].items():
         table.add_row(f"layers on {patch}", f"{cover['any_layer_pct']}% any, {cover['all_layers_pct']}% all, mean {cover['mean_layers']}")
+    for patch, slices in report.get("layers_along_x", {}).items():
+        if slices:
+            table.add_row(f"mean layers on {patch}, aft to fore",
+                          " ".join(f"{s['mean_layers']:.1f}" for s in slices) + f" (slices of {slices[0]['x_to'] - slices[0]['x_from']:.2f} m)")
     sphere = report["rotating_sphere"]
     table.add_row("rotating sphere", f"R = {sphere['radius_m']:.3f} m, interface faces off the sphere by at most "
                   f"{sphere.get('max_deviation_pct_of_radius')} % of R, tilted by at most {sphere.get('tilt_deg_max')} deg")

@@ -4,7 +4,8 @@ import numpy as np
 import pytest
 
 from hydroderiv.errors import HydroderivError
-from hydroderiv.forces.surface_flow import describe_reversed_flow, patch_faces, reversed_flow
+from hydroderiv.forces.surface_flow import describe_reversed_flow, reversed_flow
+from hydroderiv.mesh.quality import patch_faces
 
 HEADER = "FoamFile\n{{\n    version 2.0;\n    format {fmt};\n    class {cls};\n    object {obj};\n}}\n"
 

@@ -57,6 +57,10 @@ def test_prism_layers_cover_most_of_the_hull(coarse_bare_hull):
     _, report = coarse_bare_hull
     cover = report["layer_coverage"]["hull"]
     assert cover["any_layer_pct"] > 80
+    # the profile along the body accounts for every hull face, and the parallel midbody keeps the full stack
+    slices = report["layers_along_x"]["hull"]
+    assert sum(s["faces"] for s in slices) == cover["faces"]
+    assert max(s["mean_layers"] for s in slices) >= 0.9 * cover["layers_wanted"]
 
 
 def test_a_second_call_reuses_the_mesh(coarse_bare_hull, suboff):

@@ -13,66 +13,15 @@ wall still runs aft, only turned sideways.
 
 from __future__ import annotations
 
-import re
 from pathlib import Path
 
 import numpy as np
 from foamlib import FoamFieldFile
 
 from ..errors import HydroderivError
-from ..mesh.quality import face_geometry, read_points, require_ascii
+from ..mesh.quality import patch_faces
 
 FIELD = "wallShearStress"  # written by OpenFOAM's wallShearStress function object (see case/setup.py)
-
-
-def patch_faces(mesh_dir: str | Path, patches: tuple[str, ...] | list[str]) -> dict[str, tuple[np.ndarray, np.ndarray]]:
-    """(face centres, face area vectors) of each named patch of an ascii polyMesh, in metres.
-
-    Only the faces of those patches are parsed (they sit in one contiguous range of the faces file each),
-    so this stays quick on meshes of millions of cells.
-    """
-    mesh_dir = Path(mesh_dir)
-    boundary = (mesh_dir / "boundary").read_text()
-    ranges = {}
-    for patch in patches:
-        block = re.search(rf"^\s*{re.escape(patch)}\s*\{{([^}}]*)\}}", boundary, re.M)
-        if block is None:
-            raise HydroderivError(f"{mesh_dir / 'boundary'} has no patch {patch!r}")
-        entries = dict(re.findall(r"(\w+)\s+([^;]+);", block.group(1)))
-        ranges[patch] = (int(entries["startFace"]), int(entries["nFaces"]))
-
-    points = read_points(mesh_dir)
-
-    wanted = sorted((start, n, patch) for patch, (start, n) in ranges.items())
-    faces: dict[str, list[list[int]]] = {patch: [] for patch in patches}
-    with open(mesh_dir / "faces") as stream:
-        header = ""
-        for line in stream:  # header and count, up to the opening parenthesis of the list
-            header += line
-            if line.strip() == "(":
-                break
-        require_ascii(header, mesh_dir / "faces")
-        index, k = 0, 0
-        for line in stream:
-            if k == len(wanted):
-                break
-            start, n, patch = wanted[k]
-            if index >= start:
-                labels = line[line.index("(") + 1 : line.rindex(")")].split()
-                faces[patch].append([int(v) for v in labels])
-                if len(faces[patch]) == n:
-                    k += 1
-            index += 1
-
-    out = {}
-    for patch in patches:
-        centres, areas = [], []
-        for face in faces[patch]:
-            centre, area = face_geometry(points, np.asarray(face))
-            centres.append(centre)
-            areas.append(area)
-        out[patch] = (np.array(centres).reshape(-1, 3), np.array(areas).reshape(-1, 3))
-    return out
 
 
 def reversed_flow(

@@ -81,6 +81,32 @@ def layer_coverage(case: Path, layers_wanted: dict[str, int]) -> dict:
     return out
 
 
+def layers_along_x(case: Path, patch: str, bins: int = 8) -> list[dict]:
+    """Prism layers on one patch in ``bins`` equal slices of its length along x, aft to fore.
+
+    On a body of revolution snappy keeps the layers on the parallel midbody and loses them where the surface
+    curves away from the background grid (nose, tail cone) or its cells get finer (appendage roots); the
+    patch-wide share hides where. Each slice: its x range (m), faces, mean face size (mm), % of faces with
+    any layer and mean layers. Empty without snappy's layer field.
+    """
+    case = Path(case)
+    counts = _boundary_list(case / "0" / "nSurfaceLayers", patch) if (case / "0" / "nSurfaceLayers").is_file() else []
+    if not len(counts):
+        return []
+    centres, areas = patch_faces(case / "constant" / "polyMesh", [patch])[patch]
+    x, size = centres[:, 0], np.sqrt(np.linalg.norm(areas, axis=1))
+    edges = np.linspace(x.min(), x.max(), bins + 1)
+    slot = np.clip(np.searchsorted(edges, x, side="right") - 1, 0, bins - 1)
+    out = []
+    for k in range(bins):
+        n = counts[slot == k]
+        if len(n):
+            out.append({"x_from": round(float(edges[k]), 3), "x_to": round(float(edges[k + 1]), 3), "faces": int(len(n)),
+                        "face_size_mm": round(1000.0 * float(size[slot == k].mean()), 1),
+                        "any_layer_pct": round(100.0 * float((n > 0).mean()), 1), "mean_layers": round(float(n.mean()), 2)})
+    return out
+
+
 def _ascii_file(path: Path) -> tuple[str, str]:
     """(header, body) of an ascii OpenFOAM file: its FoamFile dictionary, and everything after it."""
     text = path.read_text()
@@ -129,3 +155,53 @@ def face_geometry(points: np.ndarray, face: np.ndarray) -> tuple[np.ndarray, np.
     weights = np.linalg.norm(triangles, axis=1)
     centre = (weights[:, None] * (corners + following + middle)).sum(axis=0) / (3.0 * weights.sum())
     return centre, triangles.sum(axis=0)
+
+
+def patch_faces(mesh_dir: str | Path, patches: tuple[str, ...] | list[str]) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """(face centres, face area vectors) of each named patch of an ascii polyMesh, in metres.
+
+    Only the faces of those patches are parsed (they sit in one contiguous range of the faces file each),
+    so this stays quick on meshes of millions of cells.
+    """
+    mesh_dir = Path(mesh_dir)
+    boundary = (mesh_dir / "boundary").read_text()
+    ranges = {}
+    for patch in patches:
+        block = re.search(rf"^\s*{re.escape(patch)}\s*\{{([^}}]*)\}}", boundary, re.M)
+        if block is None:
+            raise HydroderivError(f"{mesh_dir / 'boundary'} has no patch {patch!r}")
+        entries = dict(re.findall(r"(\w+)\s+([^;]+);", block.group(1)))
+        ranges[patch] = (int(entries["startFace"]), int(entries["nFaces"]))
+
+    points = read_points(mesh_dir)
+
+    wanted = sorted((start, n, patch) for patch, (start, n) in ranges.items())
+    faces: dict[str, list[list[int]]] = {patch: [] for patch in patches}
+    with open(mesh_dir / "faces") as stream:
+        header = ""
+        for line in stream:  # header and count, up to the opening parenthesis of the list
+            header += line
+            if line.strip() == "(":
+                break
+        require_ascii(header, mesh_dir / "faces")
+        index, k = 0, 0
+        for line in stream:
+            if k == len(wanted):
+                break
+            start, n, patch = wanted[k]
+            if index >= start:
+                labels = line[line.index("(") + 1 : line.rindex(")")].split()
+                faces[patch].append([int(v) for v in labels])
+                if len(faces[patch]) == n:
+                    k += 1
+            index += 1
+
+    out = {}
+    for patch in patches:
+        centres, areas = [], []
+        for face in faces[patch]:
+            centre, area = face_geometry(points, np.asarray(face))
+            centres.append(centre)
+            areas.append(area)
+        out[patch] = (np.array(centres).reshape(-1, 3), np.array(areas).reshape(-1, 3))
+    return out

@@ -22,7 +22,7 @@ from ..geometry import Body
 from ..run.openfoam import run_application
 from .design import BEFORE_THE_FIELD, GRID_SHIFT, REFINEMENT_RATIO, MeshDesign, is_thin_part, mesh_options
 from .interface import project_interface_onto_sphere, sphere_interface_spread
-from .quality import MeshQualityError, layer_coverage, parse_check_mesh
+from .quality import MeshQualityError, layer_coverage, layers_along_x, parse_check_mesh
 
 FARFIELD = "farfield"
 ROTATING_ZONE = "rotatingZone"
@@ -460,6 +460,7 @@ def build_mesh(
         "refinement_ratio": REFINEMENT_RATIO,
         "layers": {**asdict(layers), "total_thickness": layers.total_thickness},
         "layer_coverage": layer_coverage(case, {c: design.layers_of(c).count for c in body.component_names}),
+        "layers_along_x": {c: layers_along_x(case, c) for c in body.component_names if not is_thin_part(c)},
         "design_yplus": {
             "speed_m_s": design_speed,
             "first_cell_centre": round(layers.yplus_target, 1),
