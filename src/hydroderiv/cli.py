@@ -231,7 +231,9 @@ def _derivatives(args: argparse.Namespace) -> int:
     for row in rows:
         table.add_row(row.name, f"{row.value:+.5f}", f"{row.stderr:.1e}", f"{row.iterative_stderr:.1e}",
                       f"{row.single_point:+.5f}",
-                      "  ".join(f"{k}: {v:+.5f}" for k, v in row.single_point_by_magnitude.items()), str(row.n_points),
+                      "  ".join(f"{k}: {v:+.5f}" for k, v in row.single_point_by_magnitude.items()),
+                      # a sweep at one magnitude is fitted without the table's nonlinear term: say so
+                      f"{row.n_points}" + (", slope only" if row.nonlinear_term != study.nonlinear else ""),
                       "-" if row.reference is None else f"{row.reference:+.6f}",
                       "-" if row.error_pct is None else f"{row.error_pct:+.1f}", f"{row.experimental_uncertainty_pct:.0f}")
     console.print(table)

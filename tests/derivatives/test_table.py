@@ -93,8 +93,11 @@ def test_a_linear_fit_needs_only_one_point_each_side():
 
     results = [r for r in synthetic_results() if quick(r["condition"])]
     assert len(results) == 5
-    assert not derivative_table(results)  # one magnitude cannot carry a nonlinear term as well
+    # one magnitude cannot carry a nonlinear term as well: asked for one, every sweep gets the slope alone
+    fallback = derivative_table(results)
+    assert {r.nonlinear_term for r in fallback} == {"none"}
     rows = {r.name: r for r in derivative_table(results, nonlinear="none")}
+    assert [r.value for r in fallback] == [rows[r.name].value for r in fallback]
     assert set(rows) == {"Yv", "Nv", "Yr", "Nr"}
     assert rows["Yr"].value == pytest.approx(0.00325, rel=1e-6) and rows["Nr"].value == pytest.approx(-0.00372, rel=0.05)
 
@@ -132,3 +135,15 @@ def test_a_fit_range_keeps_a_stall_out_of_the_slope_but_in_the_single_points():
 def test_a_fit_range_must_be_positive():
     with pytest.raises(ConfigurationError, match="max_angle_deg must be positive"):
         derivative_table(stalled_drift_sweep(), max_angle_deg=0)
+
+
+def test_a_sweep_at_one_magnitude_is_fitted_without_the_nonlinear_term_not_dropped():
+    """Turns at r' = +-0.1 only, in a table fitted with v|v| (drift at two magnitudes): three points cannot
+    carry a slope, an r|r| term and an offset, but the mirror pair still measures Y'r and N'r."""
+    results = [r for r in synthetic_results() if abs(r["condition"]["yaw_rate_prime"]) != 0.2]
+    rows = {r.name: r for r in derivative_table(results, nonlinear="abs")}
+    assert rows["Yv"].nonlinear_term == "abs" and rows["Yr"].nonlinear_term == "none"
+    assert rows["Yr"].value == pytest.approx(0.00325, rel=1e-9)
+    # N' carries 0.001 r|r|, which a mirror pair cannot tell from the slope: the slope is the pair's secant
+    assert rows["Nr"].value == pytest.approx(-0.00372 + 0.001 * 0.1, rel=1e-9)
+    assert rows["Nr"].n_points == 3  # the pair and the straight-ahead run

@@ -71,6 +71,7 @@ class DerivativeRow:
     reference: float | None
     error_pct: float | None
     experimental_uncertainty_pct: float
+    nonlinear_term: str = "abs"  # the fit's nonlinear term: the table's, or "none" for a sweep at one magnitude
 
 
 @dataclass
@@ -117,7 +118,11 @@ def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = T
         in_fit = np.abs(values) <= max_angle_deg + 1e-9 if limited else np.ones(len(xs), dtype=bool)
         estimator = DerivativeFit(nonlinear=nonlinear, fit_offset=fit_offset)
         if not estimator.has_enough_magnitudes(xs[in_fit]):
-            continue  # this sweep was not run (or has too few magnitudes for a slope and a nonlinear term)
+            # A sweep run at one magnitude (a mirror pair) cannot carry a nonlinear term, but its slope is
+            # still the derivative that pair measures: fit the slope alone rather than drop the sweep.
+            estimator = DerivativeFit(nonlinear="none", fit_offset=fit_offset)
+            if not estimator.has_enough_magnitudes(xs[in_fit]):
+                continue  # this sweep was not run
         estimator.fit(xs[in_fit], ys[in_fit], y_std=stds[in_fit])
         fits[name] = SweepFit(xs, us, ys, estimator, sweep_values=values, in_fit=in_fit, y_std=stds)
     return fits
@@ -160,6 +165,7 @@ def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> l
                 reference=ref,
                 error_pct=100.0 * (fit.slope_ - ref) / abs(ref) if ref else None,
                 experimental_uncertainty_pct=100.0 * DERIVATIVE_UNCERTAINTY[kind],
+                nonlinear_term=fit.nonlinear,
             )
         )
     return rows
