@@ -84,10 +84,10 @@ def layer_coverage(case: Path, layers_wanted: dict[str, int]) -> dict:
 def layers_along_x(case: Path, patch: str, bins: int = 8) -> list[dict]:
     """Prism layers on one patch in ``bins`` equal slices of its length along x, aft to fore.
 
-    On a body of revolution snappy keeps the layers on the parallel midbody and loses them where the surface
-    curves away from the background grid (nose, tail cone) or its cells get finer (appendage roots); the
-    patch-wide share hides where. Each slice: its x range (m), faces, mean face size (mm), % of faces with
-    any layer and mean layers. Empty without snappy's layer field.
+    The patch-wide share hides where the layers are missing: on the coarse AFF-8 hull snappy keeps the full
+    stack on the parallel midbody and loses most of it on the nose, the tail cone and the appendage roots.
+    Each slice: its x range (m), faces, mean face size (mm), % of faces with any layer and mean layers.
+    Empty without snappy's layer field.
     """
     case = Path(case)
     counts = _boundary_list(case / "0" / "nSurfaceLayers", patch) if (case / "0" / "nSurfaceLayers").is_file() else []
