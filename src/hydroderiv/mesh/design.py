@@ -156,10 +156,13 @@ class MeshDesign:
             return hull
         return dataclasses.replace(hull, count=min(hull.count, self.thin_max_layers))
 
+    def surface_level_of(self, component: str) -> int:
+        """The surface refinement level of one body part: the hull's, or the thin parts' finer one."""
+        return self.hull_surface_level + (self.appendage_extra_level if is_thin_part(component) else 0)
+
     def surface_cell_of(self, component: str) -> float:
-        """The nominal surface cell of one body part, m: the hull's, or the thin parts' finer one."""
-        extra = self.appendage_extra_level if is_thin_part(component) else 0
-        return self.cell_at(self.hull_surface_level + extra)
+        """The nominal surface cell of one body part, m."""
+        return self.cell_at(self.surface_level_of(component))
 
     def min_layer_thickness(self, component: str) -> float:
         """Below this total thickness snappy drops a part's layers: a quarter of that part's own stack.

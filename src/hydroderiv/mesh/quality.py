@@ -58,18 +58,21 @@ def _boundary_list(path: Path, patch: str) -> np.ndarray:
     return np.array([float(uniform.group(1))]) if uniform else np.empty(0)
 
 
+def _layer_counts(case: Path, patch: str) -> np.ndarray:
+    """snappy's layer count on each face of one patch; empty without its layer field or that patch."""
+    field = Path(case) / "0" / "nSurfaceLayers"
+    return _boundary_list(field, patch) if field.is_file() else np.empty(0)
+
+
 def layer_coverage(case: Path, layers_wanted: dict[str, int]) -> dict:
     """Per patch: faces, % with any prism layer, % with all of that patch's layers, mean layers.
 
     ``layers_wanted`` maps each patch to the layer count asked of it (thin parts may ask fewer than the
     hull). Read from snappy's layer field.
     """
-    field = Path(case) / "0" / "nSurfaceLayers"
     out = {}
-    if not field.is_file():
-        return out
     for patch, wanted in layers_wanted.items():
-        n = _boundary_list(field, patch)
+        n = _layer_counts(case, patch)
         if len(n):
             out[patch] = {
                 "faces": int(len(n)),
@@ -89,11 +92,10 @@ def layers_along_x(case: Path, patch: str, bins: int = 8) -> list[dict]:
     Each slice: its x range (m), faces, mean face size (mm), % of faces with any layer and mean layers.
     Empty without snappy's layer field.
     """
-    case = Path(case)
-    counts = _boundary_list(case / "0" / "nSurfaceLayers", patch) if (case / "0" / "nSurfaceLayers").is_file() else []
+    counts = _layer_counts(case, patch)
     if not len(counts):
         return []
-    centres, areas = patch_faces(case / "constant" / "polyMesh", [patch])[patch]
+    centres, areas = patch_faces(Path(case) / "constant" / "polyMesh", [patch])[patch]
     x, size = centres[:, 0], np.sqrt(np.linalg.norm(areas, axis=1))
     edges = np.linspace(x.min(), x.max(), bins + 1)
     slot = np.clip(np.searchsorted(edges, x, side="right") - 1, 0, bins - 1)

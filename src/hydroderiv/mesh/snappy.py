@@ -135,14 +135,15 @@ def _layer_thicknesses(d: MeshDesign, components: tuple[str, ...]) -> dict:
 
     layers = {}
     for c in components:
-        layers[c] = {"nSurfaceLayers": d.layers_of(c).count, "minThickness": size(d.min_layer_thickness(c), c)}
+        stack = d.layers_of(c)
+        layers[c] = {"nSurfaceLayers": stack.count, "minThickness": size(d.min_layer_thickness(c), c)}
         if relative:  # a thin part's cells are finer than the hull's, so its relative first layer is thicker
-            layers[c].update(firstLayerThickness=size(d.layers_of(c).first_thickness, c),
-                             expansionRatio=d.layers_of(c).expansion)
+            layers[c].update(firstLayerThickness=size(stack.first_thickness, c), expansionRatio=stack.expansion)
+    hull = d.layers()
     return {
         "relativeSizes": relative,
-        "firstLayerThickness": size(d.layers().first_thickness, "hull"),
-        "expansionRatio": d.layers().expansion,
+        "firstLayerThickness": size(hull.first_thickness, "hull"),
+        "expansionRatio": hull.expansion,
         "minThickness": size(d.min_layer_thickness("hull"), "hull"),
         "layers": layers,
     }
@@ -152,7 +153,7 @@ def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> Non
     boxes = _refinement_boxes(d)
     hull_level = d.hull_surface_level
     fine_level = hull_level + d.appendage_extra_level
-    region_levels = {c: (fine_level if is_thin_part(c) else hull_level) for c in components}
+    region_levels = {c: d.surface_level_of(c) for c in components}
     location = _vec(d.location_in_mesh())
     regions = {
         c: {"level": [lv, lv + (d.thin_curvature_levels if is_thin_part(c) else 0)],
