@@ -97,6 +97,23 @@ def test_relative_layer_sizes_give_each_part_its_absolute_design_on_its_own_cell
     assert 0 < relative["firstLayerThickness"] < relative["layers"]["sail"]["firstLayerThickness"] < 1
 
 
+def test_the_stern_region_refines_the_aft_part_of_the_body_only_when_asked(tmp_path):
+    """stern_extra_level: a cylinder about the x axis from just behind the tail forward over the asked length,
+    refined to the hull's level plus the extra levels; at 0 the dictionary has no such region."""
+    design = MeshDesign("coarse", 4.261, 0.476, -2.343, 2.013)
+    plain = _snappy_dict(tmp_path / "plain", design)
+    assert "sternRegion" not in plain["geometry"]
+    assert "sternRegion" not in plain["castellatedMeshControls"]["refinementRegions"]
+    stern = _snappy_dict(tmp_path / "stern", dataclasses.replace(design, stern_extra_level=2, stern_region_length_L=0.25))
+    cylinder = stern["geometry"]["sternRegion"]
+    assert cylinder["type"] == "searchableCylinder"
+    aft, fore = sorted([cylinder["point1"][0], cylinder["point2"][0]])
+    assert aft < design.body_x_min < fore == pytest.approx(design.body_x_min + 0.25 * design.length)
+    assert list(cylinder["point1"][1:]) == list(cylinder["point2"][1:]) == [0, 0]
+    assert cylinder["radius"] == pytest.approx(design.stern_region_radius_L * design.length)
+    region = stern["castellatedMeshControls"]["refinementRegions"]["sternRegion"]
+    assert region["mode"] == "inside" and region["levels"][0][1] == design.hull_surface_level + 2
+
 def test_mesh_options_are_checked_and_named(tmp_path):
     from hydroderiv.errors import ConfigurationError
     from hydroderiv.mesh.design import mesh_options

@@ -105,6 +105,13 @@ class MeshDesign:
     # layer). Relative, each part's stack is scaled so that it has its absolute design on that part's
     # nominal cells, and shrinks with the cells elsewhere (its first cell's y+ with it).
     relative_layer_sizes: bool = False
+    # Extra refinement levels in a cylinder about the aft part of the body (the tail cone and the appendage
+    # roots). There the hull's layers collapse on the curved surface, and the first cells of the hull's own
+    # level put y+ at 100-500 (medium AFF-8, 2026-12-02), where the stern's boundary layer feeds the
+    # appendages and sets the rotary loads. Finer cells there snap closer and put the first cell lower.
+    stern_extra_level: int = 0
+    stern_region_length_L: float = 0.3  # from the aft end of the body forward, in L
+    stern_region_radius_L: float = 0.08  # about the x axis, in L: SUBOFF's appendage tips are at 0.06 L
     layer_expansion: float = 1.3
     final_layer_fraction: float = 0.3  # final layer thickness over the surface cell size
     max_layers: int = 8
@@ -184,7 +191,7 @@ _FROM_THE_BODY = ("level", "length", "body_radius", "body_x_min", "body_x_max", 
 
 # Values MeshDesign fields had before the field existed: a mesh report that lacks one of these was built to
 # this value (other missing fields are not compared, see mesh/snappy.py).
-BEFORE_THE_FIELD = {"interface_on_sphere": False, "relative_layer_sizes": False}
+BEFORE_THE_FIELD = {"interface_on_sphere": False, "relative_layer_sizes": False, "stern_extra_level": 0}
 
 _TRUE, _FALSE = ("true", "yes", "on", "1"), ("false", "no", "off", "0")
 

@@ -89,6 +89,21 @@ def _refinement_boxes(d: MeshDesign) -> dict[str, dict]:
     }
 
 
+def _stern_region(d: MeshDesign) -> dict[str, dict]:
+    """The cylinder of MeshDesign.stern_extra_level about the aft part of the body (none at level 0)."""
+    if d.stern_extra_level <= 0:
+        return {}
+    L = d.length
+    return {
+        "sternRegion": {
+            "type": "searchableCylinder",
+            "point1": _vec([d.body_x_min - 0.02 * L, 0, 0]),
+            "point2": _vec([d.body_x_min + d.stern_region_length_L * L, 0, 0]),
+            "radius": d.stern_region_radius_L * L,
+        }
+    }
+
+
 def layer_min_determinant(d: MeshDesign) -> float:
     """snappy's minDeterminant, low enough to admit the design's first prism layer.
 
@@ -164,6 +179,7 @@ def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> Non
         f"{SURFACE}.stl": {"type": "triSurfaceMesh", "name": SURFACE, "regions": {c: {"name": c} for c in components}},
         ROTATING_ZONE: {"type": "searchableSphere", "centre": [0, 0, 0], "radius": d.sphere_radius},
         **boxes,
+        **(_stern_region(d) if components else {}),
     }
     with_body = bool(components)
     castellated = {
@@ -190,6 +206,8 @@ def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> Non
             "wakeNear": {"mode": "inside", "levels": [[1e15, 3]]},
             "bodyBox": {"mode": "inside", "levels": [[1e15, 3]]},
             **({SURFACE: {"mode": "distance", "levels": [[0.03 * d.length, 4]]}} if with_body else {}),
+            **{name: {"mode": "inside", "levels": [[1e15, hull_level + d.stern_extra_level]]}
+               for name in (_stern_region(d) if with_body else {})},
         },
         "locationInMesh": location,
         "allowFreeStandingZoneFaces": True,
