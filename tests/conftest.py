@@ -18,6 +18,32 @@ def suboff():
     return get
 
 
+_FOAM_HEADER = "FoamFile\n{{\n    version 2.0;\n    format ascii;\n    class {};\n    object {};\n}}\n"
+
+
+@pytest.fixture
+def strip_of_faces():
+    """Builder of a hand-made ascii polyMesh under ``case/constant/polyMesh`` with one patch ``hull``: faces
+    side by side along x, face k spanning x_edges[k] to x_edges[k + 1] at y = 0, one unit high in z. Other
+    files of the case (fields) are for the test to write."""
+
+    def build(case, x_edges):
+        mesh = case / "constant/polyMesh"
+        mesh.mkdir(parents=True)
+        n = len(x_edges) - 1
+        points = [(x, 0, z) for x in x_edges for z in (0, 1)]
+        faces = [(2 * k, 2 * k + 2, 2 * k + 3, 2 * k + 1) for k in range(n)]
+        (mesh / "points").write_text(_FOAM_HEADER.format("vectorField", "points") + f"{len(points)}\n(\n"
+                                     + "".join(f"({x} {y} {z})\n" for x, y, z in points) + ")\n")
+        (mesh / "faces").write_text(_FOAM_HEADER.format("faceList", "faces") + f"{n}\n(\n"
+                                    + "".join(f"4({' '.join(map(str, f))})\n" for f in faces) + ")\n")
+        (mesh / "boundary").write_text(_FOAM_HEADER.format("polyBoundaryMesh", "boundary")
+                                       + f"1\n(\n    hull\n    {{\n        type wall;\n        nFaces {n};\n        startFace 0;\n    }}\n)\n")
+        return mesh
+
+    return build
+
+
 @pytest.fixture(scope="session")
 def openfoam():
     """Skip-free guard: OpenFOAM is part of the set-up, so its absence is an error, not a skip."""

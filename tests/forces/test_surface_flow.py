@@ -1,10 +1,11 @@
-"""The reversed-flow report on a hand-made mesh: face areas, the sign of the wall shear, the turning stream."""
+"""The wall reports on hand-made meshes: reversed flow (face areas, the sign of the wall shear, the turning
+stream) and y+ along the body."""
 
 import numpy as np
 import pytest
 
 from hydroderiv.errors import HydroderivError
-from hydroderiv.forces.surface_flow import describe_reversed_flow, reversed_flow
+from hydroderiv.forces.surface_flow import describe_reversed_flow, describe_yplus_along_x, reversed_flow, yplus_along_x
 from hydroderiv.mesh.quality import patch_faces
 
 HEADER = "FoamFile\n{{\n    version 2.0;\n    format {fmt};\n    class {cls};\n    object {obj};\n}}\n"
@@ -105,3 +106,32 @@ def test_missing_field_unknown_patch_and_binary_mesh_are_named(tmp_path):
         patch_faces(binary, ["sides"])
     assert describe_reversed_flow({"error": "boom"}) == "reversed flow not reported: boom"
     assert describe_reversed_flow({"hull": {"area_m2": 6.0, "reversed_pct": 0.2}}) is None
+
+
+def _yplus(case, values):
+    time_dir = case / "200"
+    time_dir.mkdir()
+    (time_dir / "yPlus").write_text(HEADER.format(fmt="ascii", cls="volScalarField", obj="yPlus") + f"""
+dimensions      [0 0 0 0 0 0 0];
+internalField   uniform 0;
+boundaryField
+{{
+    hull {{ type calculated; value nonuniform List<scalar> {len(values)}({' '.join(map(str, values))}); }}
+}}
+""")
+    return time_dir
+
+
+def test_yplus_along_x_weights_by_area_and_finds_the_slice_beyond_the_log_layer(tmp_path, strip_of_faces):
+    # aft slice: faces 3 m and 1 m wide (x 0..3, 3..4) at y+ 400 and 40; fore slice: 1 m and 3 m at 50 and 70
+    mesh = strip_of_faces(tmp_path, [0, 3, 4, 5, 8])
+    time_dir = _yplus(tmp_path, [400, 40, 50, 70])
+    aft, fore = yplus_along_x(time_dir, mesh, "hull", bins=2)
+    assert (aft["x_from"], aft["x_to"], fore["x_to"]) == (1.5, 4.0, 6.5)  # face centres 1.5, 3.5, 4.5, 6.5
+    assert aft == {**aft, "faces": 2, "mean": 310.0, "max": 400.0, "above_log_layer_pct": 75.0}
+    assert fore == {**fore, "faces": 2, "mean": 65.0, "max": 70.0, "above_log_layer_pct": 0.0}
+    line = describe_yplus_along_x({"hull": [aft, fore]})
+    assert line == "hull y+ along x, aft to fore: 310 65 (% of area above 300: 75 0)"
+    assert describe_yplus_along_x({}) is None
+    with pytest.raises(HydroderivError, match="yPlus is missing"):
+        yplus_along_x(tmp_path, mesh, "hull")

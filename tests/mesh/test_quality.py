@@ -47,31 +47,19 @@ def test_layer_coverage_is_empty_without_snappys_layer_field(tmp_path):
     assert layer_coverage(tmp_path, {"hull": 8}) == {}
 
 
-def _strip_of_faces(case, layers):
-    """A patch ``hull`` of unit squares side by side along x (x in [k, k + 1], y = 0), with snappy's layer
-    count ``layers[k]`` on face k."""
-    mesh = case / "constant/polyMesh"
-    mesh.mkdir(parents=True)
-    header = "FoamFile\n{{\n    version 2.0;\n    format ascii;\n    class {};\n    object {};\n}}\n"
-    n = len(layers)
-    points = [(x, 0, z) for x in range(n + 1) for z in (0, 1)]
-    faces = [(2 * k, 2 * k + 2, 2 * k + 3, 2 * k + 1) for k in range(n)]
-    (mesh / "points").write_text(header.format("vectorField", "points") + f"{len(points)}\n(\n"
-                                 + "".join(f"({x} {y} {z})\n" for x, y, z in points) + ")\n")
-    (mesh / "faces").write_text(header.format("faceList", "faces") + f"{n}\n(\n"
-                                + "".join(f"4({' '.join(map(str, f))})\n" for f in faces) + ")\n")
-    (mesh / "boundary").write_text(header.format("polyBoundaryMesh", "boundary")
-                                   + f"1\n(\n    hull\n    {{\n        type wall;\n        nFaces {n};\n        startFace 0;\n    }}\n)\n")
+def _layered_strip(case, strip_of_faces, layers):
+    """A strip of unit squares along x (x in [k, k + 1]) with snappy's layer count ``layers[k]`` on face k."""
+    strip_of_faces(case, list(range(len(layers) + 1)))
+    header = "FoamFile\n{\n    version 2.0;\n    format ascii;\n    class volScalarField;\n    object nSurfaceLayers;\n}\n"
     (case / "0").mkdir()
     values = " ".join(str(v) for v in layers)
-    (case / "0/nSurfaceLayers").write_text(header.format("volScalarField", "nSurfaceLayers")
-                                           + "dimensions [0 0 0 0 0 0 0];\ninternalField uniform 0;\nboundaryField\n{\n"
-                                           + f"    hull\n    {{\n        type calculated;\n        value nonuniform List<scalar> {n}({values});\n    }}\n}}\n")
+    (case / "0/nSurfaceLayers").write_text(header + "dimensions [0 0 0 0 0 0 0];\ninternalField uniform 0;\nboundaryField\n{\n"
+                                           + f"    hull\n    {{\n        type calculated;\n        value nonuniform List<scalar> {len(layers)}({values});\n    }}\n}}\n")
 
 
-def test_layers_along_x_show_where_along_the_body_snappy_kept_them(tmp_path):
+def test_layers_along_x_show_where_along_the_body_snappy_kept_them(tmp_path, strip_of_faces):
     # aft half fully layered, fore half: one face without layers and one with two
-    _strip_of_faces(tmp_path, [8, 8, 0, 2])
+    _layered_strip(tmp_path, strip_of_faces, [8, 8, 0, 2])
     aft, fore = layers_along_x(tmp_path, "hull", bins=2)
     assert (aft["x_from"], aft["x_to"], fore["x_to"]) == (0.5, 2.0, 3.5)  # face centres 0.5 ... 3.5
     assert aft == {**aft, "faces": 2, "any_layer_pct": 100.0, "mean_layers": 8.0, "face_size_mm": 1000.0}

@@ -1,4 +1,5 @@
-"""Captive conditions on the coarse bare-hull mesh: mirror symmetry, the Munk moment, and the two frame methods.
+"""Captive conditions on the coarse bare-hull mesh: mirror symmetry, the pitch turn as the yaw turn turned about
+the axis, the Munk moment, and the two frame methods.
 
 A body of revolution is its own mirror image in the x-z plane, so a port turn must give the side force and
 yaw moment of the starboard turn with the sign changed, and so must -beta against +beta; X, Z and M are
@@ -69,6 +70,26 @@ def test_port_turn_mirrors_the_starboard_turn(runs):
     _mirrored(starboard, port, tolerance=0.05)
     # turning to starboard, the hull's yaw moment opposes the rotation (N'r < 0)
     assert starboard["coefficients"]["N"] < 0
+
+
+def test_a_pitch_turn_is_the_yaw_turn_turned_about_the_body_axis(runs):
+    """A body of revolution turned by 90 degrees about x (y to z, z to -y) takes a yaw turn r' into a pitch
+    turn q' = -r', its side force into Z' = Y' and its yaw moment into M' = -N': so Z'q = -Y'r and M'q = N'r.
+    This checks the vertical plane's axes and signs (z down, q > 0 nose up) through the same hybrid frames
+    and force reduction as the yaw turns. The background grid is shifted alike in y and z (GRID_SHIFT), so
+    the turned mesh is only nearly the same; the mirror tolerance applies."""
+    yaw = runs(Condition(SPEED, yaw_rate_prime=RATE))
+    pitch = runs(Condition(SPEED, pitch_rate_prime=-RATE))
+    assert pitch["converged"]
+    cy, cp = yaw["coefficients"], pitch["coefficients"]
+    scale = max(abs(cy["Y"]), abs(cy["N"]))
+    assert abs(cp["Z"] - cy["Y"]) <= 0.05 * scale, (cp["Z"], cy["Y"])
+    assert abs(cp["M"] + cy["N"]) <= 0.05 * scale, (cp["M"], cy["N"])
+    # out of the plane of the turn: as the yaw turn's Z' and M', i.e. only the offsets of the mesh
+    assert abs(cp["Y"]) <= 0.05 * scale and abs(cp["N"]) <= 0.05 * scale, (cp["Y"], cp["N"])
+    assert cp["X"] == pytest.approx(cy["X"], rel=0.05)
+    # pitching nose down (q' < 0), the hull's pitch moment opposes the rotation: M'q < 0 gives M' > 0
+    assert cp["M"] > 0
 
 
 def test_negative_drift_mirrors_positive_drift_and_the_moment_is_munk_like(runs):

@@ -1,4 +1,6 @@
-"""Reversed flow at the wall: the share of each body part's wetted area where the boundary layer runs back.
+"""Flow at the wall: where the boundary layer runs back, and where the first cell leaves the wall law.
+
+Reversed flow: the share of each body part's wetted area where the boundary layer runs back.
 
 The wall shear stress gives the direction of the flow next to the wall. Where that flow runs against the
 stream the body meets, the boundary layer has separated into a closed bubble: behind a blunt tail, or in
@@ -9,6 +11,9 @@ this share per part, beside its forces.
 
 Open cross-flow separation on the lee side of a body at incidence is not counted: there the flow at the
 wall still runs aft, only turned sideways.
+
+y+ along the body: the first cell's y+ in slices along x (yplus_along_x), because the patch-wide mean hides
+the regions, such as a tail cone without prism layers, where a wall-function mesh is out of its range.
 """
 
 from __future__ import annotations
@@ -19,9 +24,12 @@ import numpy as np
 from foamlib import FoamFieldFile
 
 from ..errors import HydroderivError
-from ..mesh.quality import patch_faces
+from ..mesh.quality import patch_faces, slices_along_x
 
 FIELD = "wallShearStress"  # written by OpenFOAM's wallShearStress function object (see case/setup.py)
+YPLUS_FIELD = "yPlus"  # written by OpenFOAM's yPlus function object
+# Above this y+ the first cell centre lies beyond the logarithmic layer that wall functions assume.
+LOG_LAYER_TOP = 300.0
 
 
 def reversed_flow(
@@ -55,6 +63,45 @@ def reversed_flow(
             "reversed_pct": round(100.0 * float(area[back].sum()) / total, 3) if total > 0 else 0.0,
         }
     return out
+
+
+def yplus_along_x(time_dir: str | Path, mesh_dir: str | Path, patch: str, bins: int = 8) -> list[dict]:
+    """First-cell y+ on one patch in ``bins`` equal slices of its length along x, aft to fore.
+
+    The patch-wide mean hides where the wall treatment leaves its range: on the medium AFF-8 hull it is 123,
+    but 120-520 over the tail cone, where snappy drops the prism layers and the first cells are the hull's
+    own surface cells. Each slice: its x range (m), faces, the area-weighted mean and the largest y+, and
+    the % of its area above LOG_LAYER_TOP.
+    """
+    path = Path(time_dir) / YPLUS_FIELD
+    if not path.is_file():
+        raise HydroderivError(f"{path} is missing: the run wrote no y+")
+    centres, areas = patch_faces(mesh_dir, [patch])[patch]
+    area = np.linalg.norm(areas, axis=1)
+    yplus = np.broadcast_to(np.asarray(FoamFieldFile(path).boundary_field[patch]["value"], dtype=float), area.shape)
+    edges, slot = slices_along_x(centres[:, 0], bins)
+    out = []
+    for k in range(bins):
+        inside = slot == k
+        if inside.any():
+            w, y = area[inside], yplus[inside]
+            out.append({"x_from": round(float(edges[k]), 3), "x_to": round(float(edges[k + 1]), 3),
+                        "faces": int(inside.sum()), "mean": round(float(np.average(y, weights=w)), 1),
+                        "max": round(float(y.max()), 1),
+                        "above_log_layer_pct": round(100.0 * float(w[y > LOG_LAYER_TOP].sum() / w.sum()), 1)})
+    return out
+
+
+def describe_yplus_along_x(report: dict) -> str | None:
+    """One line per part: its y+ slice means aft to fore, with the % of each slice's area above the log layer."""
+    if "error" in report:
+        return f"y+ along x not reported: {report['error']}"
+    lines = []
+    for part, slices in report.items():
+        means = " ".join(f"{s['mean']:.0f}" for s in slices)
+        above = " ".join(f"{s['above_log_layer_pct']:.0f}" for s in slices)
+        lines.append(f"{part} y+ along x, aft to fore: {means} (% of area above {LOG_LAYER_TOP:.0f}: {above})")
+    return "\n    ".join(lines) or None
 
 
 NOTABLE_PCT = 1.0  # below this a part's reversed flow is a few faces at a trailing edge or a tip

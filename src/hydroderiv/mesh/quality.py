@@ -84,6 +84,12 @@ def layer_coverage(case: Path, layers_wanted: dict[str, int]) -> dict:
     return out
 
 
+def slices_along_x(x: np.ndarray, bins: int) -> tuple[np.ndarray, np.ndarray]:
+    """Edges of ``bins`` equal slices from the smallest to the largest x, and the slice of each x (0 aftmost)."""
+    edges = np.linspace(x.min(), x.max(), bins + 1)
+    return edges, np.clip(np.searchsorted(edges, x, side="right") - 1, 0, bins - 1)
+
+
 def layers_along_x(case: Path, patch: str, bins: int = 8) -> list[dict]:
     """Prism layers on one patch in ``bins`` equal slices of its length along x, aft to fore.
 
@@ -96,9 +102,8 @@ def layers_along_x(case: Path, patch: str, bins: int = 8) -> list[dict]:
     if not len(counts):
         return []
     centres, areas = patch_faces(Path(case) / "constant" / "polyMesh", [patch])[patch]
-    x, size = centres[:, 0], np.sqrt(np.linalg.norm(areas, axis=1))
-    edges = np.linspace(x.min(), x.max(), bins + 1)
-    slot = np.clip(np.searchsorted(edges, x, side="right") - 1, 0, bins - 1)
+    size = np.sqrt(np.linalg.norm(areas, axis=1))
+    edges, slot = slices_along_x(centres[:, 0], bins)
     out = []
     for k in range(bins):
         n = counts[slot == k]

@@ -23,7 +23,8 @@ from ..case.setup import CaseSettings, latest_time_dir, write_condition_case
 from ..errors import HydroderivError
 from ..forces import COEFFICIENT_NAMES, PrimeScales
 from ..forces.surface_flow import FIELD as WALL_SHEAR
-from ..forces.surface_flow import reversed_flow
+from ..forces.surface_flow import reversed_flow, yplus_along_x
+from ..mesh.design import is_thin_part
 from .monitor import ConvergenceCriterion
 from .openfoam import openfoam_version_from_log, run_application
 from .solver import Progress, run_steady
@@ -59,6 +60,15 @@ def _reversed_flow(case: Path, condition: Condition, settings: CaseSettings) -> 
     try:
         return reversed_flow(latest_time_dir(case), case / "constant/polyMesh", settings.components,
                              condition.inflow(), condition.angular_velocity(settings.length))
+    except (HydroderivError, OSError) as error:
+        return {"error": str(error)}
+
+
+def _yplus_along_x(case: Path, settings: CaseSettings) -> dict:
+    """Per body part that is not thin (the hull), y+ in slices along x; a report like the reversed flow."""
+    try:
+        return {part: yplus_along_x(latest_time_dir(case), case / "constant/polyMesh", part)
+                for part in settings.components if not is_thin_part(part)}
     except (HydroderivError, OSError) as error:
         return {"error": str(error)}
 
@@ -160,6 +170,7 @@ def run_condition(
         "window_spread": np.ptp(window, axis=0).tolist(),
         "window_std": np.std(window, axis=0).tolist(),
         "yplus": _yplus_summary(case),
+        "yplus_along_x": _yplus_along_x(case, settings),
         "reversed_flow": _reversed_flow(case, condition, settings),
         "reference": {"rho": settings.fluid.rho, "speed": condition.speed, "length": settings.length},
         "openfoam_version": openfoam_version_from_log((case / "log.simpleFoam").read_text(errors="replace")),

@@ -55,7 +55,7 @@ from ..case.numerics import check_velocity_gradient_limiting
 from ..case.setup import CaseSettings, latest_time_dir
 from ..derivatives.fit import NONLINEAR_TERMS
 from ..errors import ConfigurationError, HydroderivError
-from ..forces.surface_flow import describe_reversed_flow
+from ..forces.surface_flow import describe_reversed_flow, describe_yplus_along_x
 from ..geometry import Body
 from ..mesh.design import mesh_options
 from ..run.condition import add_reversed_flow, read_result, run_condition
@@ -282,9 +282,10 @@ def run_study(
             finally:
                 running_marker(case).unlink(missing_ok=True)
             log(f"    {'converged' if done['converged'] else 'NOT converged'} in {done['iterations']} iterations, {done['wall_seconds']:.0f} s")
-            separation = describe_reversed_flow(done.get("reversed_flow", {}))
-            if separation:
-                log(f"    {separation}")
+            for line in (describe_reversed_flow(done.get("reversed_flow", {})),
+                         describe_yplus_along_x(done.get("yplus_along_x", {}))):
+                if line:
+                    log(f"    {line}")
         else:
             log(f"[{number}/{len(order)}] {condition.name}: done")
         if _warm_start_candidate(study, condition):
