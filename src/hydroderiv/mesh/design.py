@@ -108,7 +108,9 @@ class MeshDesign:
     # Extra refinement levels in a cylinder about the aft part of the body (the tail cone and the appendage
     # roots). There the hull's layers collapse on the curved surface, and the first cells of the hull's own
     # level put y+ at 100-500 (medium AFF-8, 2026-12-02), where the stern's boundary layer feeds the
-    # appendages and sets the rotary loads. Finer cells there snap closer and put the first cell lower.
+    # appendages and sets the rotary loads. Finer cells there snap closer and put the first cell lower. One
+    # level on the coarse AFF-8 mesh took the tail cone's y+ from 190-520 to 40-160 and left the hull's N'r
+    # unchanged (studies/aff8-coarse-stern-refined.toml), so it is off by default.
     stern_extra_level: int = 0
     stern_region_length_L: float = 0.3  # from the aft end of the body forward, in L
     stern_region_radius_L: float = 0.08  # about the x axis, in L: SUBOFF's appendage tips are at 0.06 L
