@@ -114,6 +114,7 @@ def test_the_stern_region_refines_the_aft_part_of_the_body_only_when_asked(tmp_p
     region = stern["castellatedMeshControls"]["refinementRegions"]["sternRegion"]
     assert region["mode"] == "inside" and region["levels"][0][1] == design.hull_surface_level + 2
 
+
 def test_mesh_options_are_checked_and_named(tmp_path):
     from hydroderiv.errors import ConfigurationError
     from hydroderiv.mesh.design import mesh_options
