@@ -76,7 +76,7 @@ def test_shear_against_the_stream_is_attached_flow_and_along_it_reversed(tmp_pat
     # the stream runs aft (-x); attached flow at the wall runs aft too, so the wall's stress on the fluid
     # points forward (+x). One side attached, the other running forward; the nose attached.
     time_dir = _shear(tmp_path, sides=[(0.5, 0, 0), (-0.2, 0.1, 0)], nose=[(0, 0.3, 0)])
-    report = reversed_flow(time_dir, mesh, ["sides", "nose"], inflow=np.array([-3.0, 0.0, 0.0]))
+    report = reversed_flow(time_dir, patch_faces(mesh, ["sides", "nose"]), inflow=np.array([-3.0, 0.0, 0.0]))
     assert report["sides"] == {"area_m2": 4.0, "reversed_pct": 50.0}
     assert report["nose"]["reversed_pct"] == 0.0  # a shear across the stream is not reversed flow
     assert "sides 50.0 %" in describe_reversed_flow(report)
@@ -89,8 +89,8 @@ def test_in_a_turn_each_face_is_judged_against_its_own_stream(tmp_path):
     # -3 - 2 = -5 m/s at y = -1, so both still run aft; at 4 rad/s the one at y = +1 runs forward (+1 m/s).
     time_dir = _shear(tmp_path, sides=[(0.5, 0, 0), (0.5, 0, 0)], nose=[(0.5, 0, 0)])
     inflow = np.array([-3.0, 0.0, 0.0])
-    slow = reversed_flow(time_dir, mesh, ["sides"], inflow, angular_velocity=np.array([0.0, 0.0, 2.0]))
-    fast = reversed_flow(time_dir, mesh, ["sides"], inflow, angular_velocity=np.array([0.0, 0.0, 4.0]))
+    slow = reversed_flow(time_dir, patch_faces(mesh, ["sides"]), inflow, angular_velocity=np.array([0.0, 0.0, 2.0]))
+    fast = reversed_flow(time_dir, patch_faces(mesh, ["sides"]), inflow, angular_velocity=np.array([0.0, 0.0, 4.0]))
     assert slow["sides"]["reversed_pct"] == 0.0
     assert fast["sides"]["reversed_pct"] == 50.0
 
@@ -98,7 +98,7 @@ def test_in_a_turn_each_face_is_judged_against_its_own_stream(tmp_path):
 def test_missing_field_unknown_patch_and_binary_mesh_are_named(tmp_path):
     mesh = _mesh(tmp_path)
     with pytest.raises(HydroderivError, match="wallShearStress is missing"):
-        reversed_flow(tmp_path, mesh, ["sides"], np.array([-1.0, 0, 0]))
+        reversed_flow(tmp_path, patch_faces(mesh, ["sides"]), np.array([-1.0, 0, 0]))
     with pytest.raises(HydroderivError, match="no patch 'sail'"):
         patch_faces(mesh, ["sail"])
     binary = _mesh(tmp_path / "binary", fmt="binary")
@@ -126,7 +126,7 @@ def test_yplus_along_x_weights_by_area_and_finds_the_slice_beyond_the_log_layer(
     # aft slice: faces 3 m and 1 m wide (x 0..3, 3..4) at y+ 400 and 40; fore slice: 1 m and 3 m at 50 and 70
     mesh = strip_of_faces(tmp_path, [0, 3, 4, 5, 8])
     time_dir = _yplus(tmp_path, [400, 40, 50, 70])
-    aft, fore = yplus_along_x(time_dir, mesh, "hull", bins=2)
+    aft, fore = yplus_along_x(time_dir, patch_faces(mesh, ["hull"]), "hull", bins=2)
     assert (aft["x_from"], aft["x_to"], fore["x_to"]) == (1.5, 4.0, 6.5)  # face centres 1.5, 3.5, 4.5, 6.5
     assert aft == {**aft, "faces": 2, "mean": 310.0, "max": 400.0, "above_log_layer_pct": 75.0}
     assert fore == {**fore, "faces": 2, "mean": 65.0, "max": 70.0, "above_log_layer_pct": 0.0}
@@ -134,4 +134,4 @@ def test_yplus_along_x_weights_by_area_and_finds_the_slice_beyond_the_log_layer(
     assert line == "hull y+ along x, aft to fore: 310 65 (% of area above 300: 75 0)"
     assert describe_yplus_along_x({}) is None
     with pytest.raises(HydroderivError, match="yPlus is missing"):
-        yplus_along_x(tmp_path, mesh, "hull")
+        yplus_along_x(tmp_path, patch_faces(mesh, ["hull"]), "hull")

@@ -24,7 +24,7 @@ import numpy as np
 from foamlib import FoamFieldFile
 
 from ..errors import HydroderivError
-from ..mesh.quality import patch_faces, slices_along_x
+from ..mesh.quality import slices_along_x
 
 FIELD = "wallShearStress"  # written by OpenFOAM's wallShearStress function object (see case/setup.py)
 YPLUS_FIELD = "yPlus"  # written by OpenFOAM's yPlus function object
@@ -32,14 +32,17 @@ YPLUS_FIELD = "yPlus"  # written by OpenFOAM's yPlus function object
 LOG_LAYER_TOP = 300.0
 
 
-def reversed_flow(
-    time_dir: str | Path, mesh_dir: str | Path, patches: tuple[str, ...] | list[str], inflow: np.ndarray,
-    angular_velocity: np.ndarray = np.zeros(3),
-) -> dict[str, dict]:
-    """Per patch: wetted area (m^2) and the % of it where the flow at the wall runs against the stream.
+WallFaces = dict[str, tuple[np.ndarray, np.ndarray]]  # per patch: face centres and area vectors (patch_faces)
 
-    ``time_dir`` holds the wall shear stress field; ``inflow`` is U_inf and ``angular_velocity`` Omega, both
-    in body axes. The body meets the stream U_inf - Omega x r at r (the same in the hybrid and the classic
+
+def reversed_flow(
+    time_dir: str | Path, faces: WallFaces, inflow: np.ndarray, angular_velocity: np.ndarray = np.zeros(3),
+) -> dict[str, dict]:
+    """Per patch of ``faces``: wetted area (m^2) and the % of it where the flow at the wall runs against the
+    stream.
+
+    ``time_dir`` holds the wall shear stress field; ``faces`` the patches' faces, as read by patch_faces;
+    ``inflow`` is U_inf and ``angular_velocity`` Omega, both in body axes. The body meets the stream U_inf - Omega x r at r (the same in the hybrid and the classic
     frames). OpenFOAM's wall shear stress is the stress the wall puts on the fluid, so it points against
     the flow next to the wall: the flow runs back where it has a positive component along that stream.
     """
@@ -47,10 +50,8 @@ def reversed_flow(
     if not path.is_file():
         raise HydroderivError(f"{path} is missing: the run wrote no wall shear stress")
     boundary = FoamFieldFile(path).boundary_field
-    geometry = patch_faces(mesh_dir, patches)
     out = {}
-    for patch in patches:
-        centres, areas = geometry[patch]
+    for patch, (centres, areas) in faces.items():
         shear = np.asarray(boundary[patch]["value"], dtype=float).reshape(-1, 3)
         if len(shear) != len(areas):
             raise HydroderivError(f"{path}: {len(shear)} values on {patch}, but the mesh has {len(areas)} faces")
@@ -65,8 +66,8 @@ def reversed_flow(
     return out
 
 
-def yplus_along_x(time_dir: str | Path, mesh_dir: str | Path, patch: str, bins: int = 8) -> list[dict]:
-    """First-cell y+ on one patch in ``bins`` equal slices of its length along x, aft to fore.
+def yplus_along_x(time_dir: str | Path, faces: WallFaces, patch: str, bins: int = 8) -> list[dict]:
+    """First-cell y+ on one patch of ``faces`` in ``bins`` equal slices of its length along x, aft to fore.
 
     The patch-wide mean hides where the wall treatment leaves its range: on the medium AFF-8 hull it is 123,
     but 120-520 over the tail cone, where snappy drops the prism layers and the first cells are the hull's
@@ -76,7 +77,7 @@ def yplus_along_x(time_dir: str | Path, mesh_dir: str | Path, patch: str, bins: 
     path = Path(time_dir) / YPLUS_FIELD
     if not path.is_file():
         raise HydroderivError(f"{path} is missing: the run wrote no y+")
-    centres, areas = patch_faces(mesh_dir, [patch])[patch]
+    centres, areas = faces[patch]
     area = np.linalg.norm(areas, axis=1)
     yplus = np.broadcast_to(np.asarray(FoamFieldFile(path).boundary_field[patch]["value"], dtype=float), area.shape)
     edges, slot = slices_along_x(centres[:, 0], bins)

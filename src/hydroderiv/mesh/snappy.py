@@ -170,6 +170,8 @@ def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> Non
     fine_level = hull_level + d.appendage_extra_level
     region_levels = {c: d.surface_level_of(c) for c in components}
     location = _vec(d.location_in_mesh())
+    with_body = bool(components)
+    stern = _stern_region(d) if with_body else {}
     regions = {
         c: {"level": [lv, lv + (d.thin_curvature_levels if is_thin_part(c) else 0)],
             "patchInfo": {"type": "wall", "inGroups": [WALL_GROUP]}}
@@ -179,9 +181,8 @@ def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> Non
         f"{SURFACE}.stl": {"type": "triSurfaceMesh", "name": SURFACE, "regions": {c: {"name": c} for c in components}},
         ROTATING_ZONE: {"type": "searchableSphere", "centre": [0, 0, 0], "radius": d.sphere_radius},
         **boxes,
-        **(_stern_region(d) if components else {}),
+        **stern,
     }
-    with_body = bool(components)
     castellated = {
         "maxLocalCells": 5_000_000,
         "maxGlobalCells": 50_000_000,
@@ -206,8 +207,7 @@ def _write_snappy(case: Path, d: MeshDesign, components: tuple[str, ...]) -> Non
             "wakeNear": {"mode": "inside", "levels": [[1e15, 3]]},
             "bodyBox": {"mode": "inside", "levels": [[1e15, 3]]},
             **({SURFACE: {"mode": "distance", "levels": [[0.03 * d.length, 4]]}} if with_body else {}),
-            **{name: {"mode": "inside", "levels": [[1e15, hull_level + d.stern_extra_level]]}
-               for name in (_stern_region(d) if with_body else {})},
+            **{name: {"mode": "inside", "levels": [[1e15, hull_level + d.stern_extra_level]]} for name in stern},
         },
         "locationInMesh": location,
         "allowFreeStandingZoneFaces": True,

@@ -25,6 +25,7 @@ from ..forces import COEFFICIENT_NAMES, PrimeScales
 from ..forces.surface_flow import FIELD as WALL_SHEAR
 from ..forces.surface_flow import reversed_flow, yplus_along_x
 from ..mesh.design import is_thin_part
+from ..mesh.quality import patch_faces
 from .monitor import ConvergenceCriterion
 from .openfoam import openfoam_version_from_log, run_application
 from .solver import Progress, run_steady
@@ -50,27 +51,33 @@ def _yplus_summary(case: Path) -> dict:
     return out
 
 
-def _reversed_flow(case: Path, condition: Condition, settings: CaseSettings) -> dict:
-    """Per body part, the share of its area with reversed flow at the wall (empty without a body).
+def _wall_reports(case: Path, condition: Condition, settings: CaseSettings) -> dict[str, dict]:
+    """The reports on the wall flow of a run, by record key (empty without a body): the reversed flow per
+    body part, and the y+ along each part that is not thin (the hull).
 
-    A report, not a result: if it cannot be made, the message takes its place and the forces stand.
+    Reports, not results: one that cannot be made gives its message instead, and the forces stand. The
+    parts' faces are read once for both (a few seconds on a medium mesh).
     """
     if not settings.components:
-        return {}
+        return {"reversed_flow": {}, "yplus_along_x": {}}
+    time_dir = latest_time_dir(case)
+    makers = {
+        "reversed_flow": lambda faces: reversed_flow(time_dir, faces, condition.inflow(),
+                                                     condition.angular_velocity(settings.length)),
+        "yplus_along_x": lambda faces: {part: yplus_along_x(time_dir, faces, part)
+                                        for part in faces if not is_thin_part(part)},
+    }
     try:
-        return reversed_flow(latest_time_dir(case), case / "constant/polyMesh", settings.components,
-                             condition.inflow(), condition.angular_velocity(settings.length))
+        faces = patch_faces(case / "constant/polyMesh", settings.components)
     except (HydroderivError, OSError) as error:
-        return {"error": str(error)}
-
-
-def _yplus_along_x(case: Path, settings: CaseSettings) -> dict:
-    """Per body part that is not thin (the hull), y+ in slices along x; a report like the reversed flow."""
-    try:
-        return {part: yplus_along_x(latest_time_dir(case), case / "constant/polyMesh", part)
-                for part in settings.components if not is_thin_part(part)}
-    except (HydroderivError, OSError) as error:
-        return {"error": str(error)}
+        return {key: {"error": str(error)} for key in makers}
+    reports = {}
+    for key, make in makers.items():
+        try:
+            reports[key] = make(faces)
+        except (HydroderivError, OSError) as error:
+            reports[key] = {"error": str(error)}
+    return reports
 
 
 def add_reversed_flow(case: str | Path, settings: CaseSettings, record: dict | None = None) -> dict:
@@ -91,7 +98,7 @@ def add_reversed_flow(case: str | Path, settings: CaseSettings, record: dict | N
     if latest is not None and not (latest / WALL_SHEAR).is_file():
         run_application(case, ["simpleFoam", "-postProcess", "-func", WALL_SHEAR, "-latestTime"],
                         log_name="wallShearStress")
-    record["reversed_flow"] = _reversed_flow(case, Condition(**record["condition"]), settings)
+    record["reversed_flow"] = _wall_reports(case, Condition(**record["condition"]), settings)["reversed_flow"]
     atomic_write_text(case / RESULT_FILE, json.dumps(record, indent=2) + "\n")
     return record["reversed_flow"]
 
@@ -170,8 +177,7 @@ def run_condition(
         "window_spread": np.ptp(window, axis=0).tolist(),
         "window_std": np.std(window, axis=0).tolist(),
         "yplus": _yplus_summary(case),
-        "yplus_along_x": _yplus_along_x(case, settings),
-        "reversed_flow": _reversed_flow(case, condition, settings),
+        **_wall_reports(case, condition, settings),
         "reference": {"rho": settings.fluid.rho, "speed": condition.speed, "length": settings.length},
         "openfoam_version": openfoam_version_from_log((case / "log.simpleFoam").read_text(errors="replace")),
     }
