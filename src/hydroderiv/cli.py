@@ -159,25 +159,39 @@ def _study_status(args: argparse.Namespace) -> int:
 
 
 def _study_flow(args: argparse.Namespace) -> int:
-    from .studies.study import Study, study_reversed_flow
+    from .forces.surface_flow import LOG_LAYER_TOP
+    from .studies.study import Study, study_wall_reports
 
     study = Study.load(args.file)
-    reports = study_reversed_flow(study, log=console.print)
+    reports = study_wall_reports(study, log=console.print)
     if not reports:
         raise HydroderivError(f"no condition of {study.path} has finished yet")
-    parts = list(next(iter(reports.values())))
+    reversed_flow = {name: report["reversed_flow"] for name, report in reports.items()}
+    parts = list(next(iter(reversed_flow.values())))
     table = Table(title=f"reversed flow at the wall, % of each part's area ({study.path})")
     table.add_column("condition")
     for part in parts:
         table.add_column(part, justify="right")
-    for name, report in reports.items():
+    for name, report in reversed_flow.items():
         if "error" in report:
             table.add_row(name, report["error"])
         else:
             table.add_row(name, *(f"{report[p]['reversed_pct']:.2f}" for p in parts))
     console.print(table)
+    yplus = {name: report["yplus_along_x"] for name, report in reports.items()}
+    table = Table(title=f"first-cell y+ along x, aft to fore: slice mean (% of its area above {LOG_LAYER_TOP:.0f})")
+    table.add_column("condition")
+    table.add_column("part")
+    table.add_column("slices")
+    for name, report in yplus.items():
+        if "error" in report:
+            table.add_row(name, "", report["error"])
+        for part, slices in ({} if "error" in report else report).items():
+            table.add_row(name, part, " ".join(f"{s['mean']:.0f} ({s['above_log_layer_pct']:.0f})" for s in slices))
+    console.print(table)
     out = Path(args.out) if args.out else study.work / "reversed-flow.json"
-    atomic_write_text(out, json.dumps({"study": str(study.path), "level": study.level, "conditions": reports}, indent=2) + "\n")
+    atomic_write_text(out, json.dumps({"study": str(study.path), "level": study.level, "conditions": reversed_flow,
+                                       "yplus_along_x": yplus}, indent=2) + "\n")
     console.print(f"written: {out}")
     return 0
 
@@ -345,7 +359,7 @@ def build_parser() -> argparse.ArgumentParser:
     status = actions.add_parser("status", help="what is done, running, failed and left")
     status.add_argument("file")
     status.set_defaults(func=_study_status)
-    flow = actions.add_parser("flow", help="reversed flow at the wall, per condition and body part")
+    flow = actions.add_parser("flow", help="reversed flow at the wall per condition and body part, and the y+ along the hull")
     flow.add_argument("file")
     flow.add_argument("--out", help="JSON output (default WORK/reversed-flow.json)")
     flow.set_defaults(func=_study_flow)

@@ -119,20 +119,27 @@ def test_the_boundary_layer_stays_attached_over_the_whole_hull_area(straight, su
     assert flow["reversed_pct"] < 1.0
 
 
-def test_a_record_without_the_report_gets_it_from_the_saved_solution(straight):
+def test_a_record_without_the_wall_reports_gets_them_from_the_saved_solution(straight):
     from hydroderiv.case.setup import latest_time_dir
-    from hydroderiv.run.condition import add_reversed_flow, read_result
+    from hydroderiv.run.condition import WALL_REPORTS, add_wall_reports, read_result
 
     case, record, _, settings = straight
-    stripped = {k: v for k, v in record.items() if k != "reversed_flow"}  # as a run from before the report
+    stripped = {k: v for k, v in record.items() if k not in WALL_REPORTS}  # as a run from before the reports
     (case / RESULT_FILE).write_text(json.dumps(stripped))
-    (latest_time_dir(case) / "wallShearStress").unlink()
+    for field in ("wallShearStress", "yPlus"):
+        (latest_time_dir(case) / field).unlink()
     try:
-        report = add_reversed_flow(case, settings)
-        assert (latest_time_dir(case) / "wallShearStress").is_file()  # post-processed from the solution
-        assert report["hull"]["area_m2"] == record["reversed_flow"]["hull"]["area_m2"]
-        assert report["hull"]["reversed_pct"] == pytest.approx(record["reversed_flow"]["hull"]["reversed_pct"], abs=0.05)
-        assert read_result(case)["reversed_flow"] == report and read_result(case)["coefficients"] == record["coefficients"]
+        reports = add_wall_reports(case, settings)
+        for field in ("wallShearStress", "yPlus"):  # post-processed from the solution
+            assert (latest_time_dir(case) / field).is_file()
+        flow, made = reports["reversed_flow"]["hull"], record["reversed_flow"]["hull"]
+        assert flow["area_m2"] == made["area_m2"]
+        assert flow["reversed_pct"] == pytest.approx(made["reversed_pct"], abs=0.05)
+        slices, made = reports["yplus_along_x"]["hull"], record["yplus_along_x"]["hull"]
+        assert [s["faces"] for s in slices] == [s["faces"] for s in made]
+        assert [s["mean"] for s in slices] == pytest.approx([s["mean"] for s in made], rel=0.01)
+        again = read_result(case)
+        assert {k: again[k] for k in WALL_REPORTS} == reports and again["coefficients"] == record["coefficients"]
     finally:
         (case / RESULT_FILE).write_text(json.dumps(record))
 

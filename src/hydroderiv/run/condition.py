@@ -23,7 +23,7 @@ from ..case.setup import CaseSettings, latest_time_dir, write_condition_case
 from ..errors import HydroderivError
 from ..forces import COEFFICIENT_NAMES, PrimeScales
 from ..forces.surface_flow import FIELD as WALL_SHEAR
-from ..forces.surface_flow import reversed_flow, yplus_along_x
+from ..forces.surface_flow import YPLUS_FIELD, reversed_flow, yplus_along_x
 from ..mesh.design import is_thin_part
 from ..mesh.quality import patch_faces
 from .monitor import ConvergenceCriterion
@@ -80,27 +80,33 @@ def _wall_reports(case: Path, condition: Condition, settings: CaseSettings) -> d
     return reports
 
 
-def add_reversed_flow(case: str | Path, settings: CaseSettings, record: dict | None = None) -> dict:
-    """The reversed-flow report of a finished condition, made now if its record has none (or an error).
+WALL_REPORTS = ("reversed_flow", "yplus_along_x")  # the record keys _wall_reports fills
 
-    Conditions run before the report existed have no wall shear stress: simpleFoam's post-processing
-    writes it from the saved solution (seconds). The record is rewritten atomically with the report added.
-    ``record`` is the condition's result when the caller has read it already.
+
+def add_wall_reports(case: str | Path, settings: CaseSettings, record: dict | None = None) -> dict[str, dict]:
+    """The wall-flow reports of a finished condition by record key (see ``_wall_reports``).
+
+    A condition finished before a report existed lacks it (one that failed to be made holds its error):
+    those are made now from the saved solution, post-processing the fields they need (seconds), and the
+    record is rewritten atomically with them added. ``record`` is the condition's result when the caller
+    has read it already.
     """
     case = Path(case)
     record = record if record is not None else read_result(case)
     if record is None:
         raise HydroderivError(f"{case} has no finished result")
-    report = record.get("reversed_flow")
-    if report and "error" not in report:
-        return report
-    latest = latest_time_dir(case)
-    if latest is not None and not (latest / WALL_SHEAR).is_file():
-        run_application(case, ["simpleFoam", "-postProcess", "-func", WALL_SHEAR, "-latestTime"],
-                        log_name="wallShearStress")
-    record["reversed_flow"] = _wall_reports(case, Condition(**record["condition"]), settings)["reversed_flow"]
-    atomic_write_text(case / RESULT_FILE, json.dumps(record, indent=2) + "\n")
-    return record["reversed_flow"]
+    missing = [key for key in WALL_REPORTS if key not in record or "error" in record[key]]
+    if missing:
+        latest = latest_time_dir(case)
+        needed = {"reversed_flow": WALL_SHEAR, "yplus_along_x": YPLUS_FIELD}
+        for key in missing:
+            if latest is not None and settings.components and not (latest / needed[key]).is_file():
+                run_application(case, ["simpleFoam", "-postProcess", "-func", needed[key], "-latestTime"],
+                                log_name=needed[key])
+        made = _wall_reports(case, Condition(**record["condition"]), settings)
+        record.update({key: made[key] for key in missing})
+        atomic_write_text(case / RESULT_FILE, json.dumps(record, indent=2) + "\n")
+    return {key: record[key] for key in WALL_REPORTS}
 
 
 def _resumable(case: Path, n_procs: int) -> bool:

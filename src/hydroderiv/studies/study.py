@@ -58,7 +58,7 @@ from ..errors import ConfigurationError, HydroderivError
 from ..forces.surface_flow import describe_reversed_flow, describe_yplus_along_x
 from ..geometry import Body
 from ..mesh.design import mesh_options
-from ..run.condition import add_reversed_flow, read_result, run_condition
+from ..run.condition import WALL_REPORTS, add_wall_reports, read_result, run_condition
 from ..run.monitor import ConvergenceCriterion
 from ..run.solver import Progress
 from .workspace import Workspace, is_suboff
@@ -300,10 +300,11 @@ def _warm_start_candidate(study: Study, condition: Condition) -> bool:
     return study.method == "hybrid" or condition.is_turning
 
 
-def study_reversed_flow(study: Study, log: Callable[[str], None] = print) -> dict[str, dict]:
-    """The reversed-flow report of every finished condition, by name (see forces/surface_flow.py).
+def study_wall_reports(study: Study, log: Callable[[str], None] = print) -> dict[str, dict[str, dict]]:
+    """The wall-flow reports of every finished condition, by name and then record key: the reversed flow
+    per part and the y+ along the hull (see forces/surface_flow.py).
 
-    Conditions finished before the report existed get it now from their saved solution.
+    Conditions finished before a report existed get it now from their saved solution.
     """
     body = study.workspace.body(study.body, study.body_dir)
     settings = study.case_settings(body)
@@ -313,7 +314,9 @@ def study_reversed_flow(study: Study, log: Callable[[str], None] = print) -> dic
         record = read_result(case)
         if record is None:
             continue
-        if "reversed_flow" not in record:
-            log(f"  {condition.name}: wall shear stress from the saved solution ...")
-        reports[condition.name] = add_reversed_flow(case, settings, record)
+        missing = [key for key in WALL_REPORTS if key not in record]
+        if missing:
+            names = {"reversed_flow": "reversed flow", "yplus_along_x": "y+ along x"}
+            log(f"  {condition.name}: {' and '.join(names[k] for k in missing)} from the saved solution ...")
+        reports[condition.name] = add_wall_reports(case, settings, record)
     return reports
