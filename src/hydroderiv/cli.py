@@ -186,7 +186,8 @@ def _study_flow(args: argparse.Namespace) -> int:
     for name, report in yplus.items():
         if "error" in report:
             table.add_row(name, "", report["error"])
-        for part, slices in ({} if "error" in report else report).items():
+            continue
+        for part, slices in report.items():
             table.add_row(name, part, " ".join(f"{s['mean']:.0f} ({s['above_log_layer_pct']:.0f})" for s in slices))
     console.print(table)
     out = Path(args.out) if args.out else study.work / "reversed-flow.json"

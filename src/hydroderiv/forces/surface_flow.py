@@ -42,9 +42,10 @@ def reversed_flow(
     stream.
 
     ``time_dir`` holds the wall shear stress field; ``faces`` the patches' faces, as read by patch_faces;
-    ``inflow`` is U_inf and ``angular_velocity`` Omega, both in body axes. The body meets the stream U_inf - Omega x r at r (the same in the hybrid and the classic
-    frames). OpenFOAM's wall shear stress is the stress the wall puts on the fluid, so it points against
-    the flow next to the wall: the flow runs back where it has a positive component along that stream.
+    ``inflow`` is U_inf and ``angular_velocity`` Omega, both in body axes. The body meets the stream
+    U_inf - Omega x r at r (the same in the hybrid and the classic frames). OpenFOAM's wall shear stress is
+    the stress the wall puts on the fluid, so it points against the flow next to the wall: the flow runs
+    back where it has a positive component along that stream.
     """
     path = Path(time_dir) / FIELD
     if not path.is_file():

@@ -51,6 +51,10 @@ def _yplus_summary(case: Path) -> dict:
     return out
 
 
+# The record keys _wall_reports fills, each with the OpenFOAM field (and function object) it reads.
+WALL_REPORTS = {"reversed_flow": WALL_SHEAR, "yplus_along_x": YPLUS_FIELD}
+
+
 def _wall_reports(case: Path, condition: Condition, settings: CaseSettings) -> dict[str, dict]:
     """The reports on the wall flow of a run, by record key (empty without a body): the reversed flow per
     body part, and the y+ along each part that is not thin (the hull).
@@ -59,7 +63,7 @@ def _wall_reports(case: Path, condition: Condition, settings: CaseSettings) -> d
     parts' faces are read once for both (a few seconds on a medium mesh).
     """
     if not settings.components:
-        return {"reversed_flow": {}, "yplus_along_x": {}}
+        return {key: {} for key in WALL_REPORTS}
     time_dir = latest_time_dir(case)
     makers = {
         "reversed_flow": lambda faces: reversed_flow(time_dir, faces, condition.inflow(),
@@ -80,9 +84,6 @@ def _wall_reports(case: Path, condition: Condition, settings: CaseSettings) -> d
     return reports
 
 
-WALL_REPORTS = ("reversed_flow", "yplus_along_x")  # the record keys _wall_reports fills
-
-
 def add_wall_reports(case: str | Path, settings: CaseSettings, record: dict | None = None) -> dict[str, dict]:
     """The wall-flow reports of a finished condition by record key (see ``_wall_reports``).
 
@@ -98,11 +99,10 @@ def add_wall_reports(case: str | Path, settings: CaseSettings, record: dict | No
     missing = [key for key in WALL_REPORTS if key not in record or "error" in record[key]]
     if missing:
         latest = latest_time_dir(case)
-        needed = {"reversed_flow": WALL_SHEAR, "yplus_along_x": YPLUS_FIELD}
-        for key in missing:
-            if latest is not None and settings.components and not (latest / needed[key]).is_file():
-                run_application(case, ["simpleFoam", "-postProcess", "-func", needed[key], "-latestTime"],
-                                log_name=needed[key])
+        for field in (WALL_REPORTS[key] for key in missing):
+            if latest is not None and settings.components and not (latest / field).is_file():
+                run_application(case, ["simpleFoam", "-postProcess", "-func", field, "-latestTime"],
+                                log_name=field)
         made = _wall_reports(case, Condition(**record["condition"]), settings)
         record.update({key: made[key] for key in missing})
         atomic_write_text(case / RESULT_FILE, json.dumps(record, indent=2) + "\n")
