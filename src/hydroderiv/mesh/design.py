@@ -202,7 +202,19 @@ def mesh_options(options: Mapping[str, object], source: str = "mesh options") ->
     """Check meshing options (a study's [mesh] table, ``--mesh KEY=VALUE``) and convert their values.
 
     Raises :class:`ConfigurationError` naming an unknown option or a value of the wrong kind.
+    ``mesher = "revolution"`` asks for the body-fitted mesh of a body of revolution instead of snappyHexMesh
+    (mesh/revolution.py), with that mesher's own options.
     """
+    if "mesher" in options:
+        mesher = str(options["mesher"]).strip().lower()
+        rest = {k: v for k, v in options.items() if k != "mesher"}
+        if mesher == "revolution":
+            from .revolution import revolution_options
+
+            return {"mesher": "revolution", **revolution_options(rest, source)}
+        if mesher != "snappy":
+            raise ConfigurationError(f"{source}: unknown mesher {options['mesher']!r}; choose snappy or revolution")
+        options = rest
     kinds = {f.name: {"int": int, "bool": bool}.get(f.type, float) for f in dataclasses.fields(MeshDesign)
              if f.name not in _FROM_THE_BODY}
     checked = {}
