@@ -90,7 +90,10 @@ def test_the_body_fitted_bare_hull_passes_checkmesh_and_is_reused_only_for_its_o
     case = tmp_path / "mesh"
     report = build_revolution_mesh(body, "coarse", case, log=lambda _: None, options={"yplus_target": 50})
     assert report["checkMesh"]["ok"] and report["cells"] > 100_000
-    assert 0 < report["rotating_sphere"]["zone_cells"] < report["cells"]
+    sphere = report["rotating_sphere"]
+    assert 0 < sphere["zone_cells"] < report["cells"]
+    # a staircase about the sphere, within a far-field cell of it; the report gives its faces' tilt
+    assert sphere["max_deviation_pct_of_radius"] < 15 and "tilt_deg_max" in sphere
     boundary = (case / "constant/polyMesh/boundary").read_text()
     assert "hull" in boundary and "bodyWalls" in boundary and "farfield" in boundary
     assert build_revolution_mesh(body, "coarse", case, log=lambda _: None,

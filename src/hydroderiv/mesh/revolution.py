@@ -14,8 +14,9 @@ body's tips are fans of triangles. A first try with square-section core columns 
 usual O-H topology, put cells with a 170-degree corner where the cores met the round body; simpleFoam
 diverged there within ten iterations.
 
-The rotating sphere of the hybrid frames is the cellZone of cells whose centre lies within it; its border
-is the faceZone of the same name, as on the snappy meshes.
+The rotating sphere of the hybrid frames is the cellZone of cells whose centre lies within it, and its
+border the faceZone of the same name. Unlike the snappy meshes' that border is a staircase, not faces on
+the sphere, and MRF's flux through it disturbs the hybrid set-up (README): use the classic one here.
 """
 
 from __future__ import annotations
@@ -200,7 +201,8 @@ def meridian_grid(profile: Profile, d: RevolutionDesign) -> MeridianGrid:
     r_out = d.outer_radius_L * L
 
     # first spacing: the wall cell on the body, growing along the axis away from the tips. The axis is no
-    # wall, and cells there as thin as the wall's (17 um at y+ = 1) made simpleFoam blow up behind the tail.
+    # wall, and cells there as thin as the wall's (17 um at y+ = 1) made simpleFoam blow up behind the tail
+    # (y+ = 1 still diverges, now on the nose: see README).
     # _offset_from_wall shifts a line's nodes by BLEND (first / wall - 1); growing that shift by
     # ``axis_shear`` per metre along the axis keeps neighbouring lines' nodes within that fraction of their
     # spacing, whatever the wall cell.
@@ -291,6 +293,7 @@ def build_revolution_mesh(
 ) -> dict:
     """The body-fitted mesh of a SUBOFF bare hull (AFF-1) in ``case``, checked; returns its report."""
     from ..run.openfoam import run_application
+    from .interface import sphere_interface_spread
     from .snappy import (FARFIELD, REPORT_FILE, ROTATING_ZONE, WALL_GROUP, _check_same_design,
                          _quality_gate, _write_meshing_controls)
 
@@ -336,7 +339,8 @@ def build_revolution_mesh(
         "first_cell_m": design.wall_cell,
         "design_yplus": {"speed_m_s": design_speed, "first_cell_centre": design.yplus_target},
         "rotating_sphere": {"radius_m": design.sphere_radius, "zone_cells": counts["zone_cells"],
-                            "interface_faces": counts["zone_faces"], "interface_on_sphere": False},
+                            "interface_on_sphere": False,
+                            **sphere_interface_spread(case, design.sphere_radius, ROTATING_ZONE)},
         "layer_coverage": {},
         "components": list(body.component_names),
         "design": wanted,
