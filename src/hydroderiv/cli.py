@@ -89,20 +89,15 @@ def _mesh_options(args: argparse.Namespace) -> dict[str, int | float]:
 
 def _mesh(args: argparse.Namespace) -> int:
     body = Body.read(args.body) if args.body else suboff_body(args.config)
-    options = _mesh_options(args)
-    if options.get("mesher") == "revolution":
-        from .mesh.revolution import build_revolution_mesh
-
-        report = build_revolution_mesh(body, args.level, args.out, design_speed=args.design_speed,
-                                       log=console.print, options=options)
+    report = build_mesh(body, args.level, args.out, design_speed=args.design_speed, log=console.print,
+                        options=_mesh_options(args), n_procs=args.np)
+    if report.get("mesher") == "revolution":
         grid = report["grid"]
         console.print(f"mesh {args.out} ({body.name}, {args.level}, body-fitted): {report['cells']} cells, "
                       f"{grid['along']} along x {grid['away']} away x {grid['around']} around, first cell "
                       f"{report['first_cell_m'] * 1e3:.3f} mm (y+ {report['design_yplus']['first_cell_centre']} at its "
                       f"centre), checkMesh {'OK' if report['checkMesh']['ok'] else 'FAILED'}")
         return 0
-    report = build_mesh(body, args.level, args.out, design_speed=args.design_speed, log=console.print,
-                        options=options, n_procs=args.np)
     table = Table(title=f"mesh {args.out} ({body.name}, {args.level})", show_header=False)
     for key in ("cells", "meshing_seconds", "base_cell_m", "hull_surface_cell_m", "refinement_ratio"):
         table.add_row(key, str(report[key]))

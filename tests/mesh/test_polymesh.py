@@ -6,20 +6,22 @@ import pytest
 from hydroderiv.mesh.polymesh import face_lists, hex_faces
 
 
-def _cell_volumes(points, cells, faces):
+def face_flux(points, quads):
+    """Each face's x . S / 3 and area vector S: the divergence theorem's share of the volume it bounds."""
+    p = points[quads]
+    area = 0.5 * np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 1])
+    return np.einsum("ij,ij->i", p.mean(axis=1), area) / 3.0, area  # any point of a planar face will do
+
+
+def cell_volumes(points, cells, faces):
     """Each cell's volume by the divergence theorem over its faces as oriented by hex_faces."""
     volumes = np.zeros(len(cells))
     internal, owner, neighbour = faces["internal"]
     boundary, b_owner = faces["boundary"]
-
-    def flux(quads):
-        p = points[quads]
-        area = 0.5 * np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 1])
-        return np.einsum("ij,ij->i", p.mean(axis=1), area) / 3.0  # exact for planar faces up to the centre
-
-    np.add.at(volumes, owner, flux(internal))
-    np.add.at(volumes, neighbour, -flux(internal))
-    np.add.at(volumes, b_owner, flux(boundary))
+    f_internal, _ = face_flux(points, internal)
+    np.add.at(volumes, owner, f_internal)
+    np.add.at(volumes, neighbour, -f_internal)
+    np.add.at(volumes, b_owner, face_flux(points, boundary)[0])
     return volumes
 
 
@@ -44,7 +46,7 @@ def test_a_block_of_hexahedra_has_its_shared_faces_once_and_every_face_pointing_
     assert len(faces["boundary"][0]) == 2 * (2 * 2 + 3 * 2 + 3 * 2)
     assert np.all(owner < neighbour)
     assert np.all(np.diff(owner * len(cells) + neighbour) > 0)  # upper-triangular order
-    assert _cell_volumes(points, cells, faces) == pytest.approx(np.ones(len(cells)))
+    assert cell_volumes(points, cells, faces) == pytest.approx(np.ones(len(cells)))
 
 
 def test_hexahedra_collapsed_onto_an_axis_become_prisms_with_triangular_ends():
@@ -64,7 +66,7 @@ def test_hexahedra_collapsed_onto_an_axis_become_prisms_with_triangular_ends():
     assert len(boundary) == 2 * n + n  # two triangular ends and the outer quad of each cell
     texts = face_lists(boundary)
     assert sum(t.startswith("3(") for t in texts) == 2 * n
-    assert _cell_volumes(points, cells, faces) == pytest.approx(np.full(n, 0.5))  # a quarter of the square prism
+    assert cell_volumes(points, cells, faces) == pytest.approx(np.full(n, 0.5))  # a quarter of the square prism
 
 
 def test_overlapping_cells_are_refused():

@@ -9,6 +9,8 @@ from hydroderiv.mesh.design import mesh_options
 from hydroderiv.mesh.polymesh import hex_faces
 from hydroderiv.mesh.revolution import Profile, RevolutionDesign, meridian_grid, revolution_points_and_cells
 
+from .test_polymesh import cell_volumes, face_flux
+
 L = 4.261
 
 
@@ -45,25 +47,13 @@ def test_the_mesh_is_mirror_symmetric_closed_and_every_cell_has_a_positive_volum
     for mirror in ([1, -1, 1], [1, 1, -1]):
         assert {tuple(p) for p in np.round(points * mirror, 9).tolist()} == rounded
     faces = hex_faces(points, cells)
-    internal, owner, neighbour = faces["internal"]
-    boundary, b_owner = faces["boundary"]
-
-    def flux(quads):
-        p = points[quads]
-        area = 0.5 * np.cross(p[:, 2] - p[:, 0], p[:, 3] - p[:, 1])
-        return np.einsum("ij,ij->i", p.mean(axis=1), area) / 3.0, area
-
-    volumes = np.zeros(len(cells))
-    f_in, _ = flux(internal)
-    f_b, area_b = flux(boundary)
-    np.add.at(volumes, owner, f_in)
-    np.add.at(volumes, neighbour, -f_in)
-    np.add.at(volumes, b_owner, f_b)
-    assert volumes.min() > 0
+    boundary, _ = faces["boundary"]
+    assert cell_volumes(points, cells, faces).min() > 0
+    area_b = face_flux(points, boundary)[1]
     assert np.abs(area_b.sum(axis=0)).max() < 1e-9 * np.abs(area_b).sum()  # the boundary is closed
     # the hull's faces enclose the volume of the profile revolved (with polygonal sections)
     on_hull = np.isin(boundary, hull).all(axis=1)
-    hull_volume = -flux(boundary[on_hull])[0].sum()
+    hull_volume = -face_flux(points, boundary[on_hull])[0].sum()
     s = np.linspace(0.0, profile.s[-1], 20001)
     exact = np.trapezoid(np.pi * np.interp(s, profile.s, profile.rho) ** 2, s)
     n = shape["around"]

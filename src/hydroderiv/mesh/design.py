@@ -217,6 +217,12 @@ def mesh_options(options: Mapping[str, object], source: str = "mesh options") ->
         options = rest
     kinds = {f.name: {"int": int, "bool": bool}.get(f.type, float) for f in dataclasses.fields(MeshDesign)
              if f.name not in _FROM_THE_BODY}
+    return checked_options(options, kinds, source)
+
+
+def checked_options(options: Mapping[str, object], kinds: Mapping[str, type], source: str) -> dict:
+    """``options`` converted to ``kinds`` (option name -> int, float or bool), or a ConfigurationError naming
+    the unknown option or the value of the wrong kind."""
     checked = {}
     for name, value in options.items():
         if name not in kinds:

@@ -34,8 +34,12 @@ from .._io import atomic_write_text
 from ..errors import ConfigurationError
 from ..geometry import Body
 from ..geometry.suboff import FOOT, MOMENT_CENTRE_FROM_NOSE_M, X_CAP_END, hull_radius
-from .design import friction_velocity
+from ..run.openfoam import run_application
+from .design import checked_options, friction_velocity
+from .interface import sphere_interface_spread
 from .polymesh import write_polymesh
+from .snappy import (FARFIELD, REPORT_FILE, ROTATING_ZONE, WALL_GROUP, _quality_gate, _write_meshing_controls,
+                     reuse_finished_mesh)
 
 # Grid spacings per level, m (along the body, and its points around the axis).
 REVOLUTION_LEVELS = {
@@ -247,11 +251,11 @@ def revolution_points_and_cells(profile: Profile, d: RevolutionDesign, x_of_s: C
     xyz = np.stack([np.broadcast_to(x_of_s(grid.s)[:, :, None], shape3),
                     grid.rho[:, :, None] * np.cos(theta), grid.rho[:, :, None] * np.sin(theta)], axis=-1)
     # one label per distinct point: those on the axis are shared by every angle
+    axis_rows = np.flatnonzero(grid.rho[:, 0] == 0.0)
     keep = np.ones(shape3, dtype=bool)
-    keep[grid.rho[:, 0] == 0.0, 0, 1:] = False
+    keep[axis_rows, 0, 1:] = False
     label = np.full(shape3, -1)
     label[keep] = np.arange(np.count_nonzero(keep))
-    axis_rows = np.flatnonzero(grid.rho[:, 0] == 0.0)
     label[axis_rows, 0, :] = label[axis_rows, 0, :1]
     points = xyz[keep]
 
@@ -268,19 +272,13 @@ def revolution_points_and_cells(profile: Profile, d: RevolutionDesign, x_of_s: C
 # ----------------------------------------------------------------------------------------------------
 # Building the mesh case
 # ----------------------------------------------------------------------------------------------------
+# The body-fitted mesher's options: the RevolutionDesign fields a study may set.
+REVOLUTION_OPTIONS = ("yplus_target", "sphere_radius_L", "tip_cell", "eta_ratio")
+
+
 def revolution_options(options: Mapping[str, object], source: str = "mesh options") -> dict[str, float]:
     """The body-fitted mesher's options (a study's [mesh] table without ``mesher``), checked and converted."""
-    known = ("yplus_target", "sphere_radius_L", "tip_cell", "eta_ratio")
-    out = {}
-    for name, value in options.items():
-        if name not in known:
-            raise ConfigurationError(f"{source}: unknown option {name!r} for the body-fitted mesh; options are "
-                                     f"{', '.join(known)}")
-        try:
-            out[name] = float(value)
-        except (TypeError, ValueError):
-            raise ConfigurationError(f"{source}: mesh option {name} = {value!r} is not a number")
-    return out
+    return checked_options(options, dict.fromkeys(REVOLUTION_OPTIONS, float), source)
 
 
 def build_revolution_mesh(
@@ -292,11 +290,6 @@ def build_revolution_mesh(
     options: Mapping[str, object] | None = None,
 ) -> dict:
     """The body-fitted mesh of a SUBOFF bare hull (AFF-1) in ``case``, checked; returns its report."""
-    from ..run.openfoam import run_application
-    from .interface import sphere_interface_spread
-    from .snappy import (FARFIELD, REPORT_FILE, ROTATING_ZONE, WALL_GROUP, _check_same_design,
-                         _quality_gate, _write_meshing_controls)
-
     if tuple(body.component_names) != ("hull",) or "AFF-1" not in body.name:
         raise ConfigurationError(f"a body-fitted mesh needs the SUBOFF bare hull (AFF-1), not {body.name} "
                                  f"with {', '.join(body.component_names)}")
@@ -304,13 +297,10 @@ def build_revolution_mesh(
     options = {k: v for k, v in (options or {}).items() if k != "mesher"}
     design = RevolutionDesign(level, body.reference.length, design_speed=design_speed,
                               **revolution_options(options))
-    report_path = case / REPORT_FILE
     wanted = {"mesher": "revolution", **asdict(design)}
-    if report_path.is_file():
-        report = json.loads(report_path.read_text())
-        _check_same_design(case, report.get("design", {}), json.loads(json.dumps(wanted)))
-        log(f"mesh {case} exists ({report['cells']} cells); reusing it")
-        return report
+    finished = reuse_finished_mesh(case, wanted, log)
+    if finished is not None:
+        return finished
     t0 = time.monotonic()
     profile = Profile.suboff()
     points, cells, hull_points, shape = revolution_points_and_cells(
@@ -345,5 +335,5 @@ def build_revolution_mesh(
         "components": list(body.component_names),
         "design": wanted,
     }
-    atomic_write_text(report_path, json.dumps(report, indent=2) + "\n")
+    atomic_write_text(case / REPORT_FILE, json.dumps(report, indent=2) + "\n")
     return report

@@ -416,7 +416,22 @@ def _same(a, b) -> bool:
     return a == b
 
 
-def build_mesh(
+def reuse_finished_mesh(case: Path, wanted: dict, log: Callable[[str], None]) -> dict | None:
+    """The report of the finished mesh in ``case`` if it was built to the design ``wanted``, else None.
+
+    Raises :class:`ConfigurationError` when it was built to another design (see _check_same_design).
+    Shared by every mesher: a mesh is done when its report is written, its last step.
+    """
+    report_path = case / REPORT_FILE
+    if not report_path.is_file():
+        return None
+    report = json.loads(report_path.read_text())
+    _check_same_design(case, report.get("design", {}), wanted)
+    log(f"mesh {case} exists ({report['cells']} cells); reusing it")
+    return report
+
+
+def build_snappy_mesh(
     body: Body,
     level: str,
     case: str | Path,
@@ -439,11 +454,9 @@ def build_mesh(
     radius = float(max(abs(lo[1]), abs(hi[1]), abs(lo[2]), abs(hi[2])))
     design = MeshDesign(level, body.reference.length, radius, float(lo[0]), float(hi[0]), design_speed=design_speed,
                         **mesh_options(options or {}))
-    if report_path.is_file():
-        report = json.loads(report_path.read_text())
-        _check_same_design(case, report.get("design", {}), asdict(design))
-        log(f"mesh {case} exists ({report['cells']} cells); reusing it")
-        return report
+    finished = reuse_finished_mesh(case, asdict(design), log)
+    if finished is not None:
+        return finished
     snappy = _snappy_steps(n_procs)
     snapped = case / f"log.{snappy[-1][0]}"  # the last step that builds the mesh
     check = [("checkMesh", ["checkMesh", "-constant"], 1)]

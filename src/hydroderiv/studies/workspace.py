@@ -24,7 +24,6 @@ from ..geometry import Body, suboff_body
 from ..geometry.body import REFERENCE_FILE
 from ..geometry.suboff import CONFIGURATIONS
 from ..mesh import build_mesh
-from ..mesh.revolution import build_revolution_mesh
 
 
 @dataclass(frozen=True)
@@ -62,10 +61,7 @@ class Workspace:
         return body
 
     def mesh(self, body: Body, log: Callable[[str], None] = print, n_procs: int = 1) -> dict:
-        options = dict(self.mesh_options)
-        if options.get("mesher") == "revolution":
-            return build_revolution_mesh(body, self.level, self.mesh_dir, log=log, options=options)
-        return build_mesh(body, self.level, self.mesh_dir, log=log, options=options, n_procs=n_procs)
+        return build_mesh(body, self.level, self.mesh_dir, log=log, options=dict(self.mesh_options), n_procs=n_procs)
 
 
 def is_suboff(name: str) -> bool:
