@@ -1,4 +1,5 @@
-"""A body-fitted mesh about a body of revolution: hexahedra, prisms on the axis, any first-cell y+.
+"""A body-fitted mesh about a body of revolution, with or without fins: hexahedra, prisms on the axis, any
+first-cell y+.
 
 Why: snappyHexMesh cannot keep prism layers thin enough for y+ ~ 1 on SUBOFF's tail cone (the layers
 collapse there, see README), so the wall-function set-up could never be compared with a wall-resolved one
@@ -12,7 +13,8 @@ edge's normal and curve onto the outer cylinder rho = R_out, with geometric spac
 on the axis are shared by every angle, so the cells there are prisms (wedges about the axis) and the
 body's tips are fans of triangles. A first try with square-section core columns about the axis, in the
 usual O-H topology, put cells with a 170-degree corner where the cores met the round body; simpleFoam
-diverged there within ten iterations.
+diverged there within ten iterations. Fins are slits between sectors of the grid around the axis (see
+:func:`revolution_points_and_cells`), so every cell stays a hexahedron that follows hull and fin alike.
 
 The rotating sphere of the hybrid frames is the cellZone of cells whose centre lies within it, and its
 border the faceZone of the same name. Unlike the snappy meshes' that border is a staircase, not faces on
@@ -33,7 +35,8 @@ import numpy as np
 from .._io import atomic_write_text
 from ..errors import ConfigurationError
 from ..geometry import Body
-from ..geometry.suboff import FOOT, MOMENT_CENTRE_FROM_NOSE_M, X_CAP_END, hull_radius
+from ..geometry.suboff import (APPENDAGE_ANGLES, APPENDAGE_TE_X, APPENDAGE_TIP_RADIUS, FOOT, MOMENT_CENTRE_FROM_NOSE_M,
+                               X_CAP_END, appendage_chord, appendage_half_thickness, hull_radius)
 from ..run.openfoam import run_application
 from .design import checked_options, friction_velocity
 from .interface import sphere_interface_spread
@@ -41,10 +44,15 @@ from .polymesh import write_polymesh
 from .snappy import (FARFIELD, REPORT_FILE, ROTATING_ZONE, WALL_GROUP, _quality_gate, _write_meshing_controls,
                      reuse_finished_mesh)
 
-# Grid spacings per level, m (along the body, and its points around the axis).
+# Grid spacings per level, m (along the body, and its points around the axis). With fins, each sector
+# between two fins has ``sector`` cells around, clustered towards the fins with a first step of
+# ``fin_first_deg``; ``fin_cell`` is the spacing along the body over the fins, and ``span_cell`` caps the
+# spacing away from the wall out to ``span_reach`` (m), so that the fins' span is resolved.
 REVOLUTION_LEVELS = {
-    "coarse": {"around": 32, "nose": 0.03, "middle": 0.06, "stern": 0.025},
-    "medium": {"around": 40, "nose": 0.02, "middle": 0.04, "stern": 0.017},
+    "coarse": {"around": 32, "nose": 0.03, "middle": 0.06, "stern": 0.025,
+               "sector": 16, "fin_first_deg": 1.0, "fin_cell": 0.007, "fin_edge_cell": 0.0012, "span_cell": 0.014},
+    "medium": {"around": 40, "nose": 0.02, "middle": 0.04, "stern": 0.017,
+               "sector": 22, "fin_first_deg": 0.8, "fin_cell": 0.0045, "fin_edge_cell": 0.0008, "span_cell": 0.011},
 }
 
 
@@ -68,6 +76,7 @@ class RevolutionDesign:
     axis_cell: float = 0.03  # m: the first cell off the axis, away from the tips
     axis_shear: float = 0.5  # growth of the first cell along the axis, see meridian_grid
     turn_width: float = 0.3  # m: the eta lines' start directions are smoothed over this length of the edge
+    span_reach: float = 0.2  # m: with fins, how far from the wall the spacing stays below span_cell
 
     def __post_init__(self):
         if self.level not in REVOLUTION_LEVELS:
@@ -112,6 +121,64 @@ class Profile:
         return np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(self.s), np.diff(self.rho)))])
 
 
+@dataclass(frozen=True)
+class Fins:
+    """Identical fins about a body of revolution: their section and where they stand around the axis.
+
+    ``angles_deg`` are the fins' mid-planes in the mesher's angle theta (y = rho cos theta, z = rho sin
+    theta, body axes) and ``names`` their patches. Only SUBOFF's four stern appendages are described
+    (Groves et al. 1989): NACA 0020-form sections, a chord linear in the distance from the axis and a
+    straight trailing edge, out to a flat tip at the hull's largest radius.
+    """
+
+    angles_deg: tuple[float, ...]
+    names: tuple[str, ...]
+    trailing_edge: float  # m aft of the nose
+    tip_radius: float  # m from the axis
+
+    @classmethod
+    def suboff(cls) -> Fins:
+        # APPENDAGE_ANGLES run from top dead centre (-z) towards starboard (+y): theta = angle - 90 degrees
+        order = sorted(APPENDAGE_ANGLES, key=lambda name: (APPENDAGE_ANGLES[name] - 90.0) % 360.0)
+        return cls(tuple((APPENDAGE_ANGLES[n] - 90.0) % 360.0 for n in order), tuple(order),
+                   APPENDAGE_TE_X * FOOT, APPENDAGE_TIP_RADIUS * FOOT)
+
+    def chord(self, y):
+        return appendage_chord(np.asarray(y) / FOOT) * FOOT
+
+    def half_thickness(self, s: np.ndarray, y: np.ndarray, span_trim: float = 0.0):
+        """Half-thickness (m) at ``s`` m aft of the nose and ``y`` m from the axis; 0 off the fin.
+
+        ``span_trim`` (m) counts as off the fin a strip of that width along the tip (see :meth:`half_angle`).
+        """
+        c = self.chord(y)
+        xi = (s - self.trailing_edge) / c + 1.0
+        on = (xi > 0.0) & (xi < 1.0) & (y <= self.tip_radius - span_trim)
+        return np.where(on, c * appendage_half_thickness(np.clip(xi, 0.0, 1.0)), 0.0)
+
+    def half_angle(self, s: np.ndarray, rho: np.ndarray, span_step: float) -> np.ndarray:
+        """The angle (rad) between a fin's mid-plane and its surface through a point at (s, rho).
+
+        The grid has lines on the edges (see :func:`_align_with_fins`) but not at the tip, where the fin
+        runs on to the first point off it, on average half a step too far: points within half a step
+        (``span_step``) of the tip count as off, so that on average the grid's span is the fin's. A point
+        on an edge is off the fin whatever the rounding.
+        """
+        angle = np.zeros_like(rho)
+        safe = np.maximum(rho, 1e-12)
+        for _ in range(3):  # the section is given at the distance y = rho cos(angle) along the mid-plane
+            y = rho * np.cos(angle)
+            h = self.half_thickness(s, y, span_trim=0.5 * span_step)
+            h = np.where(h > 1e-4 * self.chord(y), h, 0.0)
+            angle = np.where(rho > 0.0, np.arcsin(np.clip(h / safe, 0.0, 0.9)), 0.0)
+        return angle
+
+    def footprint(self) -> tuple[float, float]:
+        """A stretch of s (m aft of the nose) holding the fins: from the leading edge that the chord law
+        gives on the axis (a little ahead of the root's) to the trailing edge."""
+        return self.trailing_edge - float(self.chord(0.0)), self.trailing_edge
+
+
 def _nodes(length: float, spacing: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
     """Node positions on [0, length] whose spacing follows ``spacing(sigma)``."""
     sigma = np.linspace(0.0, length, 20001)
@@ -137,17 +204,33 @@ def _geometric(first: np.ndarray, total: np.ndarray, n: int) -> np.ndarray:
 BLEND = 2e-4  # m: the shift of a line's nodes off the wall fades in over this distance (_offset_from_wall)
 
 
-def _offset_from_wall(first: np.ndarray, wall: float, total: np.ndarray, n: int, blend: float = BLEND) -> np.ndarray:
+def _capped_inner(wall: float, ratio: float, cap: float, reach: float) -> np.ndarray:
+    """Node distances from the wall out to ``reach``, shared by every line: steps grow by ``ratio`` up to ``cap``."""
+    d, step = [0.0], wall
+    while d[-1] < reach:
+        d.append(d[-1] + step)
+        step = min(step * ratio, cap)
+    return np.array(d)
+
+
+def _offset_from_wall(first: np.ndarray, wall: float, total: np.ndarray, n: int, blend: float = BLEND,
+                      inner: np.ndarray | None = None) -> np.ndarray:
     """Node distances along each eta line: first spacing ``first``, ``total`` in all, ``n`` cells.
 
     Every line shares one geometric distribution from the wall cell; a line that wants a larger first cell
     (along the axis) is shifted outwards by c (1 - exp(-d / blend)), which stretches only its first few
     cells. Giving each line its own geometric ratio instead would put the nodes of neighbouring lines at
     distances differing in proportion to the distance, and shear the cells far out into non-orthogonality
-    wherever the first spacing changes along the edge.
+    wherever the first spacing changes along the edge. ``inner`` (from :func:`_capped_inner`) fixes the
+    nodes near the wall; the rest grow geometrically from its last step.
     """
     shift = blend * np.maximum(first / wall - 1.0, 0.0)
-    base = _geometric(np.full_like(total, wall), total - shift, n)
+    if inner is None:
+        base = _geometric(np.full_like(total, wall), total - shift, n)
+    else:
+        m = len(inner) - 1
+        outer = _geometric(np.full_like(total, inner[-1] - inner[-2]), total - shift - inner[-1], n - m)
+        base = np.concatenate([np.broadcast_to(inner[:-1], (len(total), m)), inner[-1] + outer], axis=1)
     return base + shift[:, None] * (1.0 - np.exp(-base / blend))
 
 
@@ -159,8 +242,12 @@ class MeridianGrid:
     tail: int  # xi index of the tail's tip
 
 
-def meridian_grid(profile: Profile, d: RevolutionDesign) -> MeridianGrid:
-    """The 2-D grid in the meridian half-plane, revolved by :func:`revolution_points_and_cells`."""
+def meridian_grid(profile: Profile, d: RevolutionDesign, fins: Fins | None = None) -> MeridianGrid:
+    """The 2-D grid in the meridian half-plane, revolved by :func:`revolution_points_and_cells`.
+
+    With ``fins`` the spacing along the body is ``fin_cell`` over them, and away from the wall at most
+    ``span_cell`` out to ``span_reach``.
+    """
     L = d.length
     sp = d.spacing
     arc = profile.arc
@@ -177,7 +264,14 @@ def meridian_grid(profile: Profile, d: RevolutionDesign) -> MeridianGrid:
         s = np.interp(g, arc, profile.s)
         target = np.interp(s / length_overall, [0.0, 0.22, 0.32, 0.70, 0.78, 1.0],
                            [sp["nose"], sp["nose"], sp["middle"], sp["middle"], sp["stern"], sp["stern"]])
-        return np.minimum(target, d.tip_cell + d.growth * np.minimum(g, body_len - g))
+        target = np.minimum(target, d.tip_cell + d.growth * np.minimum(g, body_len - g))
+        if fins is None:
+            return target
+        # the eta lines leave the tail cone leaning aft: a margin behind the trailing edge keeps the lines
+        # that cross the fins' outer parts as close together as those at their roots
+        lo, hi = fins.footprint()
+        outside = np.maximum(lo - s, 0.0) + np.maximum(s - hi - 0.02, 0.0)
+        return np.minimum(target, sp["fin_cell"] + d.growth * outside)
 
     along = _nodes(body_len, body_spacing)
     down = _nodes(s_out - length_overall, lambda g: from_tip(g, np.minimum(far, sp["stern"] + d.growth * g)))
@@ -227,46 +321,188 @@ def meridian_grid(profile: Profile, d: RevolutionDesign) -> MeridianGrid:
     seg = np.linalg.norm(np.diff(curve, axis=1), axis=2)
     arclen = np.concatenate([np.zeros((len(s0), 1)), np.cumsum(seg, axis=1)], axis=1)
     total = arclen[:, -1]
-    n_eta = math.ceil(math.log(1.0 + total.max() * (d.eta_ratio - 1.0) / d.wall_cell) / math.log(d.eta_ratio))
-    dists = _offset_from_wall(first, d.wall_cell, total, n_eta)
+    if fins is None:
+        inner, n_inner, step = None, 0, d.wall_cell
+        reach = 0.0
+    else:
+        inner = _capped_inner(d.wall_cell, d.eta_ratio, sp["span_cell"], d.span_reach)
+        n_inner, step, reach = len(inner) - 1, inner[-1] - inner[-2], inner[-1]
+    n_eta = n_inner + math.ceil(math.log(1.0 + (total.max() - reach) * (d.eta_ratio - 1.0) / step)
+                                / math.log(d.eta_ratio))
+    dists = _offset_from_wall(first, d.wall_cell, total, n_eta, inner=inner)
     s_grid = np.empty((len(s0), n_eta + 1))
     r_grid = np.empty_like(s_grid)
     for i in range(len(s0)):
         s_grid[i] = np.interp(dists[i], arclen[i], curve[i, :, 0])
         r_grid[i] = np.interp(dists[i], arclen[i], curve[i, :, 1])
     s_grid[:, 0], r_grid[:, 0] = s0, r0
-    return MeridianGrid(s_grid, r_grid, len(s_up) - 1, len(s_up) + len(s_body) - 2)
+    grid = MeridianGrid(s_grid, r_grid, len(s_up) - 1, len(s_up) + len(s_body) - 2)
+    if fins is None:
+        return grid
+    return _align_with_fins(grid, fins, d, profile, dists[grid.nose])
+
+
+def _spaced(lo: float, hi: float, n: int, spacing: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
+    """``n`` + 1 nodes from ``lo`` to ``hi`` whose spacing is in proportion to ``spacing(s)``."""
+    sigma = np.linspace(lo, hi, 2001)
+    density = 1.0 / spacing(sigma)
+    count = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(sigma))])
+    return np.interp(np.linspace(0.0, count[-1], n + 1), count, sigma)
+
+
+def _align_with_fins(grid: MeridianGrid, fins: Fins, d: RevolutionDesign, profile: Profile,
+                     away: np.ndarray) -> MeridianGrid:
+    """Move the nodes about the fins along each eta line so that the fins' edges lie on grid lines.
+
+    The leading edge is swept and would cross the lines; a node up to a step behind it left its rounded
+    nose (radius 4.4 % of the chord) a blunt wedge, whose flow separated. Here, within ``span_reach`` of
+    the wall, one line runs along the leading edge and one along the trailing edge, and the nodes cluster
+    at both (``fin_edge_cell`` at the leading edge, twice that at the trailing edge); further out the lines
+    return to their first places. ``away`` is the distance of each eta line from the wall.
+    """
+    sp = d.spacing
+    lo, hi = fins.footprint()
+    edge_s = grid.s[:, 0]
+    body = np.arange(grid.nose, grid.tail + 1)
+    i0 = body[np.searchsorted(edge_s[body], lo - 0.03) - 1]
+    i1 = body[np.searchsorted(edge_s[body], hi + 0.04)]
+    n_old = i1 - i0
+    weight = np.clip(2.0 - away / d.span_reach, 0.0, 1.0)  # 1 out to span_reach, 0 from twice that
+    window = slice(i0, i1 + 1)
+    curves_s, curves_r = grid.s[window], grid.rho[window]
+
+    def leading_edge(j):
+        # the edge's s where the line's distance from the axis gives the chord; the wall's nodes are put
+        # on the hull itself (below), the others on the line through the first nodes
+        radius = (lambda s_: np.interp(s_, profile.s, profile.rho)) if j == 0 else (
+            lambda s_: np.interp(s_, curves_s[:, j], curves_r[:, j]))
+        s_le = hi - float(fins.chord(fins.tip_radius))
+        for _ in range(30):
+            s_le = hi - float(fins.chord(min(float(radius(s_le)), fins.tip_radius)))
+        return s_le
+
+    def spacing_about(s_le, s_te):
+        def spacing(s):
+            outside = np.maximum(lo - s, 0.0) + np.maximum(s - hi - 0.02, 0.0)
+            return np.minimum.reduce([sp["fin_cell"] + d.growth * outside,
+                                      sp["fin_edge_cell"] + d.growth * np.abs(s - s_le),
+                                      2.0 * sp["fin_edge_cell"] + d.growth * np.abs(s - s_te)])
+        return spacing
+
+    aligned = np.flatnonzero(weight > 0.0)
+    edges = {j: leading_edge(j) for j in aligned}
+    counts = np.zeros(3, dtype=int)
+    for j in aligned:  # the most cells any aligned line needs, per stretch: ahead, over and behind the fin
+        bounds = [curves_s[0, j], edges[j], hi, curves_s[-1, j]]
+        spacing = spacing_about(edges[j], hi)
+        for n in range(3):
+            sigma = np.linspace(bounds[n], bounds[n + 1], 2001)
+            counts[n] = max(counts[n], math.ceil(np.trapezoid(1.0 / spacing(sigma), sigma)))
+    n_new = int(counts.sum())
+    new_s = np.empty((n_new + 1, grid.s.shape[1]))
+    new_r = np.empty_like(new_s)
+    for j in range(grid.s.shape[1]):
+        # the line's first nodes, resampled to the new count, and (near the wall) the aligned ones
+        first = np.interp(np.linspace(0.0, n_old, n_new + 1), np.arange(n_old + 1), curves_s[:, j])
+        target = first
+        if weight[j] > 0.0:
+            spacing = spacing_about(edges[j], hi)
+            bounds = [curves_s[0, j], edges[j], hi, curves_s[-1, j]]
+            parts = [_spaced(bounds[n], bounds[n + 1], counts[n], spacing) for n in range(3)]
+            target = weight[j] * np.concatenate([parts[0], parts[1][1:], parts[2][1:]]) + (1.0 - weight[j]) * first
+        if np.any(np.diff(curves_s[:, j]) <= 0.0):
+            raise ConfigurationError("the grid's lines about the fins are not monotonic along the body")
+        arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(curves_s[:, j]), np.diff(curves_r[:, j])))])
+        at = np.interp(target, curves_s[:, j], arc)
+        new_s[:, j] = np.interp(at, arc, curves_s[:, j])
+        new_r[:, j] = np.interp(at, arc, curves_r[:, j])
+    new_r[:, 0] = np.interp(new_s[:, 0], profile.s, profile.rho)  # on the hull itself, not its chords
+    s_all = np.concatenate([grid.s[:i0], new_s, grid.s[i1 + 1:]])
+    r_all = np.concatenate([grid.rho[:i0], new_r, grid.rho[i1 + 1:]])
+    return MeridianGrid(s_all, r_all, grid.nose, grid.tail + n_new - n_old)
 
 
 # ----------------------------------------------------------------------------------------------------
 # The assembly in three dimensions
 # ----------------------------------------------------------------------------------------------------
-def revolution_points_and_cells(profile: Profile, d: RevolutionDesign, x_of_s: Callable[[np.ndarray], np.ndarray]):
-    """Points (body axes), hexahedra as 8 point labels (collapsed on the axis), the hull's points, the shape."""
-    grid = meridian_grid(profile, d)
-    n_around = d.spacing["around"]
-    theta = 2.0 * np.pi * np.arange(n_around) / n_around
-    n_xi, n_eta = grid.s.shape[0] - 1, grid.s.shape[1] - 1
-    shape3 = (n_xi + 1, n_eta + 1, n_around)
-    xyz = np.stack([np.broadcast_to(x_of_s(grid.s)[:, :, None], shape3),
-                    grid.rho[:, :, None] * np.cos(theta), grid.rho[:, :, None] * np.sin(theta)], axis=-1)
-    # one label per distinct point: those on the axis are shared by every angle
-    axis_rows = np.flatnonzero(grid.rho[:, 0] == 0.0)
-    keep = np.ones(shape3, dtype=bool)
-    keep[axis_rows, 0, 1:] = False
-    label = np.full(shape3, -1)
-    label[keep] = np.arange(np.count_nonzero(keep))
-    label[axis_rows, 0, :] = label[axis_rows, 0, :1]
-    points = xyz[keep]
+def _sector_fractions(n: int, first: float) -> np.ndarray:
+    """``n`` + 1 fractions from 0 to 1, clustered alike towards both ends with first step ``first``."""
+    if n % 2:
+        raise ConfigurationError(f"a sector between fins needs an even number of cells, not {n}")
+    d = _geometric(np.array([first]), np.array([0.5]), n // 2)[0]
+    return np.concatenate([d, 1.0 - d[-2::-1]])
 
-    i, j, k = np.meshgrid(np.arange(n_xi), np.arange(n_eta), np.arange(n_around), indexing="ij")
-    k1 = (k + 1) % n_around
-    cells = np.stack([label[i, j, k], label[i + 1, j, k], label[i + 1, j, k1], label[i, j, k1],
-                      label[i, j + 1, k], label[i + 1, j + 1, k], label[i + 1, j + 1, k1],
-                      label[i, j + 1, k1]], axis=-1).reshape(-1, 8)
-    hull = np.unique(label[grid.nose: grid.tail + 1, 0])
-    shape = {"along": n_xi, "away": n_eta, "around": n_around}
-    return points, cells, hull, shape
+
+def revolution_points_and_cells(profile: Profile, d: RevolutionDesign, x_of_s: Callable[[np.ndarray], np.ndarray],
+                                fins: Fins | None = None):
+    """Points (body axes), hexahedra as 8 point labels (collapsed on the axis), surfaces, the grid's shape.
+
+    ``surfaces`` maps "hull" and each fin's name to the labels of its points (a fin's: every point on its
+    mid-plane, see below). Around the axis the grid runs in sectors from one fin to the next. A fin is a
+    slit: the last line of one sector and the first of the next are both on the fin's mid-plane, and share
+    their points wherever the fin has no thickness, so the cells on either side meet there; over the fin
+    the two lines part to its two surfaces and the faces between them become the fin's boundary. The
+    sections close at the leading and trailing edges; at the flat tip the slit closes over one cell away
+    from the wall, so the tip is a narrow wedge of ``span_cell`` height. Without fins there is one sector
+    all around, its two ends one line.
+    """
+    grid = meridian_grid(profile, d, fins)
+    sp = d.spacing
+    n_xi, n_eta = grid.s.shape[0] - 1, grid.s.shape[1] - 1
+    if fins is None:
+        starts, widths = np.array([0.0]), np.array([2.0 * np.pi])
+        fractions = np.linspace(0.0, 1.0, sp["around"] + 1)
+        half = np.zeros_like(grid.rho)
+    else:
+        starts = np.radians(np.asarray(fins.angles_deg))
+        widths = np.diff(np.append(starts, starts[0] + 2.0 * np.pi))
+        fractions = _sector_fractions(sp["sector"], math.radians(sp["fin_first_deg"]) / widths.min())
+        half = fins.half_angle(grid.s, grid.rho, sp["span_cell"])
+    n_sectors, m = len(starts), len(fractions) - 1
+    a = half[:, :, None, None]
+    theta = starts[None, None, :, None] + a + (widths[None, None, :, None] - 2.0 * a) * fractions
+    rho = grid.rho[:, :, None, None]
+    x = np.broadcast_to(x_of_s(grid.s)[:, :, None, None], theta.shape)
+    xyz = np.stack([x, rho * np.cos(theta), rho * np.sin(theta)], axis=-1).reshape(-1, 3)
+
+    # one label per distinct point: a sector's last line is the next one's first off the fins, and the
+    # points on the axis are shared by every angle
+    label = np.arange(theta.size).reshape(theta.shape)
+    closed = half == 0.0
+    for sector in range(n_sectors):
+        following = (sector + 1) % n_sectors
+        label[:, :, sector, m] = np.where(closed, label[:, :, following, 0], label[:, :, sector, m])
+    axis_rows = np.flatnonzero(grid.rho[:, 0] == 0.0)
+    label[axis_rows, 0] = label[axis_rows, 0, 0, 0][:, None, None]
+    distinct, label = np.unique(label, return_inverse=True)
+    label = label.reshape(theta.shape)
+    points = xyz[distinct]
+
+    i, j, sector, t = np.meshgrid(np.arange(n_xi), np.arange(n_eta), np.arange(n_sectors), np.arange(m), indexing="ij")
+    cells = np.stack([label[i, j, sector, t], label[i + 1, j, sector, t], label[i + 1, j, sector, t + 1],
+                      label[i, j, sector, t + 1], label[i, j + 1, sector, t], label[i + 1, j + 1, sector, t],
+                      label[i + 1, j + 1, sector, t + 1], label[i, j + 1, sector, t + 1]], axis=-1).reshape(-1, 8)
+    surfaces = {"hull": np.unique(label[grid.nose: grid.tail + 1, 0])}
+    for n, name in enumerate(fins.names if fins is not None else ()):
+        surfaces[name] = np.unique(np.concatenate([label[:, :, n, 0].ravel(), label[:, :, n - 1, m].ravel()]))
+    shape = {"along": n_xi, "away": n_eta, "around": n_sectors * m}
+    return points, cells, surfaces, shape
+
+
+def classify_boundary_faces(quads: np.ndarray, surfaces: dict[str, np.ndarray], n_points: int) -> np.ndarray:
+    """Index into ["farfield", *surfaces] of each boundary face: the first surface holding all its points.
+
+    A fin's point set is its whole mid-plane, but the only boundary faces lying wholly in it are the fin's:
+    the rest of the plane is inside the fluid.
+    """
+    names = [name for name in surfaces if name != "hull"] + ["hull"]
+    patch = np.zeros(len(quads), dtype=int)
+    for name in names:
+        on = np.zeros(n_points, dtype=bool)
+        on[surfaces[name]] = True
+        wholly = on[quads].all(axis=1) & (patch == 0)
+        patch[wholly] = 1 + list(surfaces).index(name)
+    return patch
 
 
 # ----------------------------------------------------------------------------------------------------
@@ -289,31 +525,35 @@ def build_revolution_mesh(
     log: Callable[[str], None] = print,
     options: Mapping[str, object] | None = None,
 ) -> dict:
-    """The body-fitted mesh of a SUBOFF bare hull (AFF-1) in ``case``, checked; returns its report."""
-    if tuple(body.component_names) != ("hull",) or "AFF-1" not in body.name:
-        raise ConfigurationError(f"a body-fitted mesh needs the SUBOFF bare hull (AFF-1), not {body.name} "
-                                 f"with {', '.join(body.component_names)}")
+    """The body-fitted mesh of SUBOFF's bare hull (AFF-1) or hull with stern appendages (AFF-3) in ``case``,
+    checked; returns its report."""
+    names = tuple(body.component_names)
+    fins = Fins.suboff()
+    if "SUBOFF" not in body.name or names not in (("hull",), ("hull", *APPENDAGE_ANGLES)):
+        raise ConfigurationError(f"a body-fitted mesh needs SUBOFF's bare hull (AFF-1) or hull with stern "
+                                 f"appendages (AFF-3), not {body.name} with {', '.join(names)}")
+    if names == ("hull",):
+        fins = None
     case = Path(case)
     options = {k: v for k, v in (options or {}).items() if k != "mesher"}
     design = RevolutionDesign(level, body.reference.length, design_speed=design_speed,
                               **revolution_options(options))
-    wanted = {"mesher": "revolution", **asdict(design)}
+    wanted = {"mesher": "revolution", **asdict(design), "fins": list(fins.names) if fins else []}
     finished = reuse_finished_mesh(case, wanted, log)
     if finished is not None:
         return finished
     t0 = time.monotonic()
     profile = Profile.suboff()
-    points, cells, hull_points, shape = revolution_points_and_cells(
-        profile, design, lambda s: MOMENT_CENTRE_FROM_NOSE_M - s)
-    on_hull = np.zeros(len(points), dtype=bool)
-    on_hull[hull_points] = True
+    points, cells, surfaces, shape = revolution_points_and_cells(
+        profile, design, lambda s: MOMENT_CENTRE_FROM_NOSE_M - s, fins)
     centres = points[cells].mean(axis=1)
     inside = np.linalg.norm(centres, axis=1) < design.sphere_radius  # the moment centre is the origin
     _write_meshing_controls(case)  # checkMesh reads controlDict and the numerics
+    wall = {"type": "wall", "inGroups": f"2({WALL_GROUP} wall)"}
     counts = write_polymesh(
         case / "constant/polyMesh", points, cells,
-        lambda quads: np.where(on_hull[quads].all(axis=1), 1, 0),
-        [(FARFIELD, {"type": "patch"}), ("hull", {"type": "wall", "inGroups": f"2({WALL_GROUP} wall)"})],
+        lambda quads: classify_boundary_faces(quads, surfaces, len(points)),
+        [(FARFIELD, {"type": "patch"}), *((name, wall) for name in surfaces)],
         cell_zone=(ROTATING_ZONE, inside))
     log(f"  body-fitted mesh: {counts['cells']} cells ({shape['along']} along, {shape['away']} away, "
         f"{shape['around']} around), written in {time.monotonic() - t0:.0f} s")
