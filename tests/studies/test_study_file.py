@@ -6,7 +6,7 @@ import pytest
 
 from hydroderiv.case import KNOT, Condition
 from hydroderiv.errors import ConfigurationError
-from hydroderiv.studies.study import Study, run_order
+from hydroderiv.studies.study import Study, run_order, warm_start_candidates
 
 GOOD = """
 [study]
@@ -104,6 +104,12 @@ def test_a_classic_study_shares_the_straight_runs_and_keeps_its_turns_apart(tmp_
     assert classic.case_dir(straight) == hybrid.case_dir(straight)
     assert classic.case_dir(drift) == hybrid.case_dir(drift)
     assert classic.case_dir(turn) != hybrid.case_dir(turn) and classic.case_dir(turn).parent.name == "conditions-classic"
+    # a classic turn holds the fluid at rest far away: no start for a drift run, nor a drift run for a turn
+    finished = {classic.case_dir(c): c for c in (drift, turn)}
+    other_turn = Condition(hybrid.speed, yaw_rate_prime=0.2)
+    assert warm_start_candidates(classic, Condition(hybrid.speed, drift_deg=8), finished) == {classic.case_dir(drift): drift}
+    assert warm_start_candidates(classic, other_turn, finished) == {classic.case_dir(turn): turn}
+    assert warm_start_candidates(hybrid, other_turn, finished) == finished
 
 
 @pytest.mark.parametrize("path", sorted((Path(__file__).parents[2] / "studies").glob("*.toml")), ids=lambda p: p.name)

@@ -259,15 +259,13 @@ def run_study(
     # Warm-start candidates: every condition already finished, by an earlier run of this study too, so a
     # resumed or retried condition starts from its nearest neighbour even when that one comes later in
     # the run order (a straight run that failed is retried from a finished drift, not from rest).
-    finished: dict[Path, Condition] = {
-        study.case_dir(c): c for c in order if _warm_start_candidate(study, c) and read_result(study.case_dir(c))
-    }
+    finished: dict[Path, Condition] = {study.case_dir(c): c for c in order if read_result(study.case_dir(c))}
     results: dict[str, dict] = {}
     for number, condition in enumerate(order, start=1):
         case = study.case_dir(condition)
         done = read_result(case)
         if done is None:
-            start = nearest_finished(condition, finished) if warm_start else None
+            start = nearest_finished(condition, warm_start_candidates(study, condition, finished)) if warm_start else None
             log(f"[{number}/{len(order)}] {condition.name}" + (f" (warm start from {start.parent.name})" if start else " (cold start)"))
             case.mkdir(parents=True, exist_ok=True)
             (case / FAILED_FILE).unlink(missing_ok=True)
@@ -288,16 +286,20 @@ def run_study(
                     log(f"    {line}")
         else:
             log(f"[{number}/{len(order)}] {condition.name}: done")
-        if _warm_start_candidate(study, condition):
-            finished[case] = condition
+        finished[case] = condition
         results[condition.name] = done
     return results
 
 
-def _warm_start_candidate(study: Study, condition: Condition) -> bool:
-    # A classic turn starts from fluid at rest far away; the straight runs it shares hold the hybrid
-    # inflow field, which would be a worse start than none.
-    return study.method == "hybrid" or condition.is_turning
+def warm_start_candidates(study: Study, condition: Condition, finished: dict[Path, Condition]) -> dict[Path, Condition]:
+    """The finished conditions that ``condition`` may start from: those solved in the same frame.
+
+    A classic turn holds the fluid at rest far away, and the straight and drift runs (shared with the
+    hybrid set-up) the inflow: each would be a worse start for the other than none.
+    """
+    if study.method == "hybrid":
+        return finished
+    return {case: c for case, c in finished.items() if c.is_turning == condition.is_turning}
 
 
 def study_wall_reports(study: Study, log: Callable[[str], None] = print) -> dict[str, dict[str, dict]]:
