@@ -154,6 +154,10 @@ def test_each_fin_is_a_patch_with_suboffs_planform(finned):
 
 def test_a_study_asks_for_the_body_fitted_mesher_and_its_own_options_only():
     assert mesh_options({"mesher": "revolution", "yplus_target": "1"}) == {"mesher": "revolution", "yplus_target": 1.0}
+    assert mesh_options({"mesher": "revolution", "sector_cells": "24"}) == {"mesher": "revolution", "sector_cells": 24}
+    with pytest.raises(ConfigurationError, match="whole number"):
+        mesh_options({"mesher": "revolution", "sector_cells": 20.5})
+    assert RevolutionDesign("coarse", L, sector_cells=24).spacing["sector"] == 24
     with pytest.raises(ConfigurationError, match="max_layers"):
         mesh_options({"mesher": "revolution", "max_layers": 3})
     with pytest.raises(ConfigurationError, match="unknown mesher"):

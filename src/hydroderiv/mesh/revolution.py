@@ -77,6 +77,8 @@ class RevolutionDesign:
     axis_shear: float = 0.5  # growth of the first cell along the axis, see meridian_grid
     turn_width: float = 0.3  # m: the eta lines' start directions are smoothed over this length of the edge
     span_reach: float = 0.2  # m: with fins, how far from the wall the spacing stays below span_cell
+    sector_cells: int | None = None  # with fins: cells around between two fins (None: the level's)
+    fin_first_deg: float | None = None  # with fins: the first step around off a fin (None: the level's)
 
     def __post_init__(self):
         if self.level not in REVOLUTION_LEVELS:
@@ -84,10 +86,14 @@ class RevolutionDesign:
                                      f"{', '.join(REVOLUTION_LEVELS)}")
         if not 0.1 <= self.yplus_target <= 300:
             raise ConfigurationError(f"yplus_target {self.yplus_target} is outside 0.1-300")
+        if self.fin_first_deg is not None and not 0.01 <= self.fin_first_deg <= 10:
+            raise ConfigurationError(f"fin_first_deg {self.fin_first_deg} is outside 0.01-10 degrees")
 
     @property
     def spacing(self) -> dict:
-        return REVOLUTION_LEVELS[self.level]
+        """The level's spacings, with the ones a study has set instead."""
+        overrides = {"sector": self.sector_cells, "fin_first_deg": self.fin_first_deg}
+        return {**REVOLUTION_LEVELS[self.level], **{k: v for k, v in overrides.items() if v is not None}}
 
     @property
     def wall_cell(self) -> float:
@@ -401,6 +407,8 @@ def _align_with_fins(grid: MeridianGrid, fins: Fins, d: RevolutionDesign, profil
     n_new = int(counts.sum())
     new_s = np.empty((n_new + 1, grid.s.shape[1]))
     new_r = np.empty_like(new_s)
+    if np.any(np.diff(curves_s, axis=0) <= 0.0):
+        raise ConfigurationError("the grid's lines about the fins do not run aft monotonically")
     for j in range(grid.s.shape[1]):
         # the line's first nodes, resampled to the new count, and (near the wall) the aligned ones
         first = np.interp(np.linspace(0.0, n_old, n_new + 1), np.arange(n_old + 1), curves_s[:, j])
@@ -410,8 +418,6 @@ def _align_with_fins(grid: MeridianGrid, fins: Fins, d: RevolutionDesign, profil
             bounds = [curves_s[0, j], edges[j], hi, curves_s[-1, j]]
             parts = [_spaced(bounds[n], bounds[n + 1], counts[n], spacing) for n in range(3)]
             target = weight[j] * np.concatenate([parts[0], parts[1][1:], parts[2][1:]]) + (1.0 - weight[j]) * first
-        if np.any(np.diff(curves_s[:, j]) <= 0.0):
-            raise ConfigurationError("the grid's lines about the fins are not monotonic along the body")
         arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(curves_s[:, j]), np.diff(curves_r[:, j])))])
         at = np.interp(target, curves_s[:, j], arc)
         new_s[:, j] = np.interp(at, arc, curves_s[:, j])
@@ -509,12 +515,13 @@ def classify_boundary_faces(quads: np.ndarray, surfaces: dict[str, np.ndarray], 
 # Building the mesh case
 # ----------------------------------------------------------------------------------------------------
 # The body-fitted mesher's options: the RevolutionDesign fields a study may set.
-REVOLUTION_OPTIONS = ("yplus_target", "sphere_radius_L", "tip_cell", "eta_ratio")
+REVOLUTION_OPTIONS = {"yplus_target": float, "sphere_radius_L": float, "tip_cell": float, "eta_ratio": float,
+                      "sector_cells": int, "fin_first_deg": float}
 
 
 def revolution_options(options: Mapping[str, object], source: str = "mesh options") -> dict[str, float]:
     """The body-fitted mesher's options (a study's [mesh] table without ``mesher``), checked and converted."""
-    return checked_options(options, dict.fromkeys(REVOLUTION_OPTIONS, float), source)
+    return checked_options(options, REVOLUTION_OPTIONS, source)
 
 
 def build_revolution_mesh(
