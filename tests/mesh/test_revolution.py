@@ -157,6 +157,9 @@ def test_a_study_asks_for_the_body_fitted_mesher_and_its_own_options_only():
     with pytest.raises(ConfigurationError, match="whole number"):
         mesh_options({"mesher": "revolution", "sector_cells": 20.5})
     assert RevolutionDesign("coarse", L, sector_cells=24).spacing["sector"] == 24
+    assert RevolutionDesign("coarse", L, span_cell=0.007).spacing["span_cell"] == 0.007
+    with pytest.raises(ConfigurationError, match="span_cell"):
+        RevolutionDesign("coarse", L, span_cell=1.0)
     with pytest.raises(ConfigurationError, match="max_layers"):
         mesh_options({"mesher": "revolution", "max_layers": 3})
     with pytest.raises(ConfigurationError, match="unknown mesher"):

@@ -79,6 +79,7 @@ class RevolutionDesign:
     span_reach: float = 0.2  # m: with fins, how far from the wall the spacing stays below span_cell
     sector_cells: int | None = None  # with fins: cells around between two fins (None: the level's)
     fin_first_deg: float | None = None  # with fins: the first step around off a fin (None: the level's)
+    span_cell: float | None = None  # m, with fins: the cap on steps away from the wall (None: the level's)
 
     def __post_init__(self):
         if self.level not in REVOLUTION_LEVELS:
@@ -88,11 +89,13 @@ class RevolutionDesign:
             raise ConfigurationError(f"yplus_target {self.yplus_target} is outside 0.1-300")
         if self.fin_first_deg is not None and not 0.01 <= self.fin_first_deg <= 10:
             raise ConfigurationError(f"fin_first_deg {self.fin_first_deg} is outside 0.01-10 degrees")
+        if self.span_cell is not None and not 0.001 <= self.span_cell <= 0.1:
+            raise ConfigurationError(f"span_cell {self.span_cell} m is outside 0.001-0.1 m")
 
     @property
     def spacing(self) -> dict:
         """The level's spacings, with the ones a study has set instead."""
-        overrides = {"sector": self.sector_cells, "fin_first_deg": self.fin_first_deg}
+        overrides = {"sector": self.sector_cells, "fin_first_deg": self.fin_first_deg, "span_cell": self.span_cell}
         return {**REVOLUTION_LEVELS[self.level], **{k: v for k, v in overrides.items() if v is not None}}
 
     @property
@@ -516,7 +519,7 @@ def classify_boundary_faces(quads: np.ndarray, surfaces: dict[str, np.ndarray], 
 # ----------------------------------------------------------------------------------------------------
 # The body-fitted mesher's options: the RevolutionDesign fields a study may set.
 REVOLUTION_OPTIONS = {"yplus_target": float, "sphere_radius_L": float, "tip_cell": float, "eta_ratio": float,
-                      "sector_cells": int, "fin_first_deg": float}
+                      "sector_cells": int, "fin_first_deg": float, "span_cell": float}
 
 
 def revolution_options(options: Mapping[str, object], source: str = "mesh options") -> dict[str, float]:
