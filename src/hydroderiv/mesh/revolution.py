@@ -188,6 +188,17 @@ class Fins:
         return self.trailing_edge - float(self.chord(0.0)), self.trailing_edge
 
 
+def _fin_spacing(fins: Fins, d: RevolutionDesign, s: np.ndarray) -> np.ndarray:
+    """Spacing along the body about the fins: ``fin_cell`` over them, growing away from them.
+
+    The eta lines leave the tail cone leaning aft: a margin behind the trailing edge keeps the lines that
+    cross the fins' outer parts as close together as those at their roots.
+    """
+    lo, hi = fins.footprint()
+    outside = np.maximum(lo - s, 0.0) + np.maximum(s - hi - 0.02, 0.0)
+    return d.spacing["fin_cell"] + d.growth * outside
+
+
 def _nodes(length: float, spacing: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
     """Node positions on [0, length] whose spacing follows ``spacing(sigma)``."""
     sigma = np.linspace(0.0, length, 20001)
@@ -274,13 +285,7 @@ def meridian_grid(profile: Profile, d: RevolutionDesign, fins: Fins | None = Non
         target = np.interp(s / length_overall, [0.0, 0.22, 0.32, 0.70, 0.78, 1.0],
                            [sp["nose"], sp["nose"], sp["middle"], sp["middle"], sp["stern"], sp["stern"]])
         target = np.minimum(target, d.tip_cell + d.growth * np.minimum(g, body_len - g))
-        if fins is None:
-            return target
-        # the eta lines leave the tail cone leaning aft: a margin behind the trailing edge keeps the lines
-        # that cross the fins' outer parts as close together as those at their roots
-        lo, hi = fins.footprint()
-        outside = np.maximum(lo - s, 0.0) + np.maximum(s - hi - 0.02, 0.0)
-        return np.minimum(target, sp["fin_cell"] + d.growth * outside)
+        return target if fins is None else np.minimum(target, _fin_spacing(fins, d, s))
 
     along = _nodes(body_len, body_spacing)
     down = _nodes(s_out - length_overall, lambda g: from_tip(g, np.minimum(far, sp["stern"] + d.growth * g)))
@@ -390,20 +395,19 @@ def _align_with_fins(grid: MeridianGrid, fins: Fins, d: RevolutionDesign, profil
             s_le = hi - float(fins.chord(min(float(radius(s_le)), fins.tip_radius)))
         return s_le
 
-    def spacing_about(s_le, s_te):
+    def spacing_about(s_le):
         def spacing(s):
-            outside = np.maximum(lo - s, 0.0) + np.maximum(s - hi - 0.02, 0.0)
-            return np.minimum.reduce([sp["fin_cell"] + d.growth * outside,
-                                      sp["fin_edge_cell"] + d.growth * np.abs(s - s_le),
-                                      2.0 * sp["fin_edge_cell"] + d.growth * np.abs(s - s_te)])
+            return np.minimum.reduce([_fin_spacing(fins, d, s), sp["fin_edge_cell"] + d.growth * np.abs(s - s_le),
+                                      2.0 * sp["fin_edge_cell"] + d.growth * np.abs(s - hi)])
         return spacing
 
-    aligned = np.flatnonzero(weight > 0.0)
-    edges = {j: leading_edge(j) for j in aligned}
+    # per aligned line: the bounds of its three stretches (ahead of, over and behind the fin) and its spacing
+    stretches = {}
+    for j in np.flatnonzero(weight > 0.0).tolist():
+        s_le = leading_edge(j)
+        stretches[j] = ([curves_s[0, j], s_le, hi, curves_s[-1, j]], spacing_about(s_le))
     counts = np.zeros(3, dtype=int)
-    for j in aligned:  # the most cells any aligned line needs, per stretch: ahead, over and behind the fin
-        bounds = [curves_s[0, j], edges[j], hi, curves_s[-1, j]]
-        spacing = spacing_about(edges[j], hi)
+    for bounds, spacing in stretches.values():  # the most cells any aligned line needs, per stretch
         for n in range(3):
             sigma = np.linspace(bounds[n], bounds[n + 1], 2001)
             counts[n] = max(counts[n], math.ceil(np.trapezoid(1.0 / spacing(sigma), sigma)))
@@ -416,9 +420,8 @@ def _align_with_fins(grid: MeridianGrid, fins: Fins, d: RevolutionDesign, profil
         # the line's first nodes, resampled to the new count, and (near the wall) the aligned ones
         first = np.interp(np.linspace(0.0, n_old, n_new + 1), np.arange(n_old + 1), curves_s[:, j])
         target = first
-        if weight[j] > 0.0:
-            spacing = spacing_about(edges[j], hi)
-            bounds = [curves_s[0, j], edges[j], hi, curves_s[-1, j]]
+        if j in stretches:
+            bounds, spacing = stretches[j]
             parts = [_spaced(bounds[n], bounds[n + 1], counts[n], spacing) for n in range(3)]
             target = weight[j] * np.concatenate([parts[0], parts[1][1:], parts[2][1:]]) + (1.0 - weight[j]) * first
         arc = np.concatenate([[0.0], np.cumsum(np.hypot(np.diff(curves_s[:, j]), np.diff(curves_r[:, j])))])
@@ -538,12 +541,10 @@ def build_revolution_mesh(
     """The body-fitted mesh of SUBOFF's bare hull (AFF-1) or hull with stern appendages (AFF-3) in ``case``,
     checked; returns its report."""
     names = tuple(body.component_names)
-    fins = Fins.suboff()
     if "SUBOFF" not in body.name or names not in (("hull",), ("hull", *APPENDAGE_ANGLES)):
         raise ConfigurationError(f"a body-fitted mesh needs SUBOFF's bare hull (AFF-1) or hull with stern "
                                  f"appendages (AFF-3), not {body.name} with {', '.join(names)}")
-    if names == ("hull",):
-        fins = None
+    fins = None if names == ("hull",) else Fins.suboff()
     case = Path(case)
     options = {k: v for k, v in (options or {}).items() if k != "mesher"}
     design = RevolutionDesign(level, body.reference.length, design_speed=design_speed,

@@ -189,11 +189,15 @@ class Study:
                             limit_pressure_gradient_at_start=self.limit_pressure_gradient_at_start,
                             limit_velocity_gradient=self.limit_velocity_gradient)
 
+    def frame_method(self, condition: Condition) -> str:
+        """The frame ``condition`` is solved in. Without rotation both methods are the same translation, so
+        it is the hybrid set-up's, whatever the study's method."""
+        return self.method if condition.is_turning else "hybrid"
+
     def case_dir(self, condition: Condition) -> Path:
-        """Where ``condition`` runs. Without rotation both frame methods are the same translation, so a
-        classic study shares the straight runs of the hybrid one on the same mesh instead of repeating them."""
-        workspace = self.workspace if condition.is_turning else replace(self.workspace, method="hybrid")
-        return workspace.condition_dir(condition.name)
+        """Where ``condition`` runs: a classic study shares the straight runs of the hybrid one on the same
+        mesh instead of repeating them (see :meth:`frame_method`)."""
+        return replace(self.workspace, method=self.frame_method(condition)).condition_dir(condition.name)
 
     def status(self) -> dict[str, list[str]]:
         """Conditions by state: done, running, failed, left."""
@@ -297,9 +301,8 @@ def warm_start_candidates(study: Study, condition: Condition, finished: dict[Pat
     A classic turn holds the fluid at rest far away, and the straight and drift runs (shared with the
     hybrid set-up) the inflow: each would be a worse start for the other than none.
     """
-    if study.method == "hybrid":
-        return finished
-    return {case: c for case, c in finished.items() if c.is_turning == condition.is_turning}
+    frame = study.frame_method(condition)
+    return {case: c for case, c in finished.items() if study.frame_method(c) == frame}
 
 
 def study_wall_reports(study: Study, log: Callable[[str], None] = print) -> dict[str, dict[str, dict]]:
