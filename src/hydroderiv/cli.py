@@ -263,7 +263,8 @@ def _derivatives(args: argparse.Namespace) -> int:
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": body,
             "turbulence_model": study.turbulence_model, "method": study.method,
             "limited_pressure_gradient": study.limit_pressure_gradient,
-            "limited_velocity_gradient": study.limit_velocity_gradient, "conditions": len(results),
+            "limited_velocity_gradient": study.limit_velocity_gradient,
+            "pressure_velocity_coupling": study.pressure_velocity_coupling, "conditions": len(results),
             "fit": {"nonlinear": study.nonlinear, "offset": study.fit_offset,
                     **({} if study.max_angle_deg is None else {"max_angle_deg": study.max_angle_deg})}}
     paths = write_table(rows, out, meta, results)

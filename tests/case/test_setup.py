@@ -121,6 +121,30 @@ def test_a_velocity_gradient_limited_for_convection_only_leaves_the_strain_rate_
         CaseSettings(length=4.261, components=("hull",), limit_velocity_gradient="sometimes")
 
 
+def test_simplec_relaxes_the_pressure_less_and_keeps_its_coupling_through_the_switch_to_second_order(tmp_path):
+    """SIMPLEC (consistent) is set when the case is written; the mid-run switch of the convection schemes
+    rewrites the schemes only, so the coupling chosen stays."""
+    from foamlib import FoamFile
+
+    from hydroderiv.case import Condition
+    from hydroderiv.case.numerics import has_second_order_convection, switch_to_second_order_convection
+    from hydroderiv.case.setup import CaseSettings, write_condition_case
+    from hydroderiv.errors import ConfigurationError
+
+    mesh = tmp_path / "mesh"
+    (mesh / "constant/polyMesh").mkdir(parents=True)
+    for coupling, consistent, p_relax in (("SIMPLE", False, 0.3), ("SIMPLEC", True, 0.9)):
+        settings = CaseSettings(length=4.261, components=("hull",), pressure_velocity_coupling=coupling)
+        case = write_condition_case(tmp_path / coupling, mesh, Condition(speed=3.344), settings)  # a cold start
+        switch_to_second_order_convection(case, settings.limiters_after_start())
+        assert has_second_order_convection(case)
+        solution = FoamFile(case / "system/fvSolution")
+        assert solution["SIMPLE"]["consistent"] is consistent
+        assert solution["relaxationFactors"]["fields"]["p"] == pytest.approx(p_relax)
+    with pytest.raises(ConfigurationError, match="pressure_velocity_coupling = 'PISO' must be one of 'SIMPLE', 'SIMPLEC'"):
+        CaseSettings(length=4.261, components=("hull",), pressure_velocity_coupling="PISO")
+
+
 def test_a_k_epsilon_model_gets_epsilon_from_the_same_free_stream_and_its_own_wall_function(tmp_path):
     from foamlib import FoamFile
 

@@ -133,5 +133,7 @@ def test_yplus_along_x_weights_by_area_and_finds_the_slice_beyond_the_log_layer(
     line = describe_yplus_along_x({"hull": [aft, fore]})
     assert line == "hull y+ along x, aft to fore: 310 65 (% of area above 300: 75 0)"
     assert describe_yplus_along_x({}) is None
+    resolved = [{**aft, "mean": 0.53, "above_log_layer_pct": 0.0}, {**fore, "mean": 1.2, "above_log_layer_pct": 0.0}]
+    assert describe_yplus_along_x({"hull": resolved}) == "hull y+ along x, aft to fore: 0.53 1.2 (% of area above 300: 0 0)"
     with pytest.raises(HydroderivError, match="yPlus is missing"):
         yplus_along_x(tmp_path, patch_faces(mesh, ["hull"]), "hull")

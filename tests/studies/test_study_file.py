@@ -75,6 +75,8 @@ def test_run_order_starts_straight_and_moves_outward():
          "limit_pressure_gradient = 'yes' must be true, false or \"start\""),
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nlimit_velocity_gradient = "sometimes"'),
          r"\.toml: limit_velocity_gradient = 'sometimes' must be one of 'everywhere', 'convection', 'nowhere'"),
+        (GOOD.replace('level = "coarse"', 'level = "coarse"\npressure_velocity_coupling = "PISO"'),
+         r"\.toml: pressure_velocity_coupling = 'PISO' must be one of 'SIMPLE', 'SIMPLEC'"),
         ("[study\nbody=", "not valid TOML"),
     ],
 )
@@ -192,6 +194,17 @@ def test_a_velocity_gradient_limited_in_convection_only_keeps_its_conditions_apa
     assert convection.case_dir(straight).parent.name == "conditions-limited-grad-p-grad-U-limited-in-convection"
     assert convection.case_settings(convection.workspace.body("AFF-1")).limit_velocity_gradient == "convection"
     assert plain.case_settings(plain.workspace.body("AFF-1")).limit_velocity_gradient == "everywhere"
+
+
+def test_simplec_keeps_its_conditions_apart_on_the_same_mesh(tmp_path):
+    plain = Study.load(write(tmp_path, GOOD))
+    simplec = Study.load(write(tmp_path, GOOD.replace('level = "coarse"', 'level = "coarse"\npressure_velocity_coupling = "SIMPLEC"')))
+    straight = Condition(plain.speed)
+    assert simplec.workspace.mesh_dir == plain.workspace.mesh_dir
+    assert simplec.case_dir(straight).parent.name == "conditions-SIMPLEC"
+    assert plain.case_dir(straight).parent.name == "conditions"
+    assert simplec.case_settings(simplec.workspace.body("AFF-1")).pressure_velocity_coupling == "SIMPLEC"
+    assert plain.case_settings(plain.workspace.body("AFF-1")).pressure_velocity_coupling == "SIMPLE"
 
 
 def test_a_pressure_gradient_limited_at_the_start_shares_the_unlimited_conditions(tmp_path):

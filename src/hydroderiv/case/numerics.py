@@ -47,6 +47,29 @@ VELOCITY_GRADIENT_LIMITING = ("everywhere", "convection", "nowhere")
 LIMITED_FOR_CONVECTION = "limitedForConvection"
 
 
+# The pressure-velocity coupling. "SIMPLE" (the default, and that of every committed result) relaxes the
+# pressure by 0.3. On meshes that resolve the wall (the body-fitted SUBOFF hull at y+ = 1-5, first cells
+# 17-84 um under 5-30 mm steps along the nose) it blew up within ten iterations of a cold start, with or
+# without a turbulence model: the wall cells on the nose took velocities of 100-200 m/s straight into the
+# wall by the fifth iteration, a pressure-velocity mode that SIMPLE's pressure relaxation lets grow in cells
+# that thin. "SIMPLEC" (OpenFOAM's `consistent` SIMPLE) drops the neglected neighbour terms from the
+# pressure equation's coefficients, so the pressure needs little relaxation (0.9 here); on the same meshes
+# it ran from uniform flow without trouble (2026-12-02).
+PRESSURE_VELOCITY_COUPLINGS = {"SIMPLE": {"consistent": False, "p": 0.3}, "SIMPLEC": {"consistent": True, "p": 0.9}}
+
+
+def check_pressure_velocity_coupling(value, source: str = "") -> str:
+    """``value`` if it names a coupling of PRESSURE_VELOCITY_COUPLINGS; else an error naming ``source`` and the choices."""
+    return _one_of("pressure_velocity_coupling", value, PRESSURE_VELOCITY_COUPLINGS, source)
+
+
+def _one_of(key: str, value, choices, source: str) -> str:
+    if value not in choices:
+        where = f"{source}: " if source else ""
+        raise ConfigurationError(f"{where}{key} = {value!r} must be one of {', '.join(map(repr, choices))}")
+    return value
+
+
 @dataclass(frozen=True)
 class GradientLimiters:
     """Which gradients are cell-limited: the pressure gradient (bool), and where the velocity gradient is
@@ -61,11 +84,7 @@ class GradientLimiters:
 
 def check_velocity_gradient_limiting(value, source: str = "") -> str:
     """``value`` if it is a place to limit the velocity gradient; else an error naming ``source`` and the choices."""
-    if value not in VELOCITY_GRADIENT_LIMITING:
-        where = f"{source}: " if source else ""
-        raise ConfigurationError(f"{where}limit_velocity_gradient = {value!r} must be one of "
-                                 f"{', '.join(map(repr, VELOCITY_GRADIENT_LIMITING))}")
-    return value
+    return _one_of("limit_velocity_gradient", value, VELOCITY_GRADIENT_LIMITING, source)
 
 
 def _convection_schemes(second_order: bool, limiters: GradientLimiters) -> dict[str, str]:
@@ -90,8 +109,7 @@ def _gradient_schemes(limiters: GradientLimiters) -> dict[str, str]:
     return schemes
 
 
-def write_numerics(case: Path, second_order: bool = True, limiters: GradientLimiters = GradientLimiters()) -> None:
-    """fvSchemes and fvSolution. Second-order (bounded linear-upwind) convection for validation runs."""
+def _write_schemes(case: Path, second_order: bool, limiters: GradientLimiters) -> None:
     write_foam_dict(
         Path(case) / "system/fvSchemes",
         {
@@ -109,6 +127,14 @@ def write_numerics(case: Path, second_order: bool = True, limiters: GradientLimi
             "wallDist": {"method": "meshWave"},
         },
     )
+
+
+def write_numerics(case: Path, second_order: bool = True, limiters: GradientLimiters = GradientLimiters(),
+                   coupling: str = "SIMPLE") -> None:
+    """fvSchemes and fvSolution. Second-order (bounded linear-upwind) convection for validation runs;
+    ``coupling`` is one of PRESSURE_VELOCITY_COUPLINGS."""
+    _write_schemes(case, second_order, limiters)
+    simple = PRESSURE_VELOCITY_COUPLINGS[check_pressure_velocity_coupling(coupling)]
     write_foam_dict(
         Path(case) / "system/fvSolution",
         {
@@ -116,16 +142,18 @@ def write_numerics(case: Path, second_order: bool = True, limiters: GradientLimi
                 "p": {"solver": "GAMG", "smoother": "GaussSeidel", "tolerance": 1e-7, "relTol": 0.05},
                 '"(U|k|omega|epsilon)"': {"solver": "smoothSolver", "smoother": "symGaussSeidel", "tolerance": 1e-8, "relTol": 0.1},
             },
-            "SIMPLE": {"nNonOrthogonalCorrectors": 0, "consistent": False},
-            "relaxationFactors": {"fields": {"p": 0.3}, "equations": {"U": 0.7, "k": 0.6, "omega": 0.6, "epsilon": 0.6}},
+            "SIMPLE": {"nNonOrthogonalCorrectors": 0, "consistent": simple["consistent"]},
+            "relaxationFactors": {"fields": {"p": simple["p"]},
+                                  "equations": {"U": 0.7, "k": 0.6, "omega": 0.6, "epsilon": 0.6}},
         },
     )
 
 
 def switch_to_second_order_convection(case: Path, limiters: GradientLimiters) -> None:
-    """Rewrite the case's numerics with second-order convection (simpleFoam re-reads them) and the
-    gradient limiters that hold from here on (CaseSettings.limiters_after_start)."""
-    write_numerics(case, second_order=True, limiters=limiters)
+    """Rewrite the case's schemes with second-order convection (simpleFoam re-reads them) and the
+    gradient limiters that hold from here on (CaseSettings.limiters_after_start). The solution controls
+    (fvSolution) stay as the case was set up."""
+    _write_schemes(case, second_order=True, limiters=limiters)
 
 
 def has_second_order_convection(case: Path) -> bool:

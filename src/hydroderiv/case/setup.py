@@ -24,7 +24,8 @@ from ..run.solver import STOP_FILE, TOTAL_FORCES, component_function_name
 from .conditions import Condition
 from .fluid import DEFAULT_TURBULENCE_MODEL, TURBULENCE_MODELS, Fluid, FreestreamTurbulence, check_turbulence_model
 from .frames import FRAME_METHODS, FrameSetup, frame_setup
-from .numerics import GradientLimiters, check_velocity_gradient_limiting, write_numerics
+from .numerics import (GradientLimiters, check_pressure_velocity_coupling, check_velocity_gradient_limiting,
+                       write_numerics)
 from .warm_start import take_internal_field
 
 COMPONENT_INTERVAL = 10  # iterations between per-component force samples
@@ -54,6 +55,7 @@ class CaseSettings:
     # everything after the switch to second order run unlimited.
     limit_pressure_gradient_at_start: bool = False
     limit_velocity_gradient: str = "everywhere"  # see hydroderiv.case.numerics.VELOCITY_GRADIENT_LIMITING
+    pressure_velocity_coupling: str = "SIMPLE"  # see hydroderiv.case.numerics.PRESSURE_VELOCITY_COUPLINGS
 
     def second_order_from(self, warm_start: Path | None) -> int | None:
         """The iteration at which second-order convection starts, or None if the case starts with it."""
@@ -81,6 +83,7 @@ class CaseSettings:
             raise ConfigurationError(f"unknown frame method {self.method!r}; choose one of {', '.join(FRAME_METHODS)}")
         check_turbulence_model(self.turbulence_model)
         check_velocity_gradient_limiting(self.limit_velocity_gradient)
+        check_pressure_velocity_coupling(self.pressure_velocity_coupling)
 
 
 def _vector(v) -> list[float]:
@@ -332,7 +335,7 @@ def write_condition_case(
     _link_mesh(case, mesh_case, whole_domain_zone=frame.whole_domain_rotates)
     _write_control(case, settings)
     write_numerics(case, settings.second_order and settings.second_order_from(warm_start) is None,
-                   limiters=settings.limiters_at_start(warm_start))
+                   limiters=settings.limiters_at_start(warm_start), coupling=settings.pressure_velocity_coupling)
     write_decomposition(case, settings.n_procs)
     _write_physics(case, frame, settings)
     n_cells = mesh_cell_count(mesh_case / "constant/polyMesh") if warm_start is not None else None

@@ -100,7 +100,7 @@ def describe_yplus_along_x(report: dict) -> str | None:
         return f"y+ along x not reported: {report['error']}"
     lines = []
     for part, slices in report.items():
-        means = " ".join(f"{s['mean']:.0f}" for s in slices)
+        means = " ".join(f"{s['mean']:.2g}" if s["mean"] < 10 else f"{s['mean']:.0f}" for s in slices)  # resolved walls: y+ ~ 1
         above = " ".join(f"{s['above_log_layer_pct']:.0f}" for s in slices)
         lines.append(f"{part} y+ along x, aft to fore: {means} (% of area above {LOG_LAYER_TOP:.0f}: {above})")
     return "\n    ".join(lines) or None

@@ -51,7 +51,7 @@ from ..case import KNOT, Condition
 from ..case.conditions import SWEEP_KEYS
 from ..case.fluid import DEFAULT_TURBULENCE_MODEL, check_turbulence_model
 from ..case.frames import FRAME_METHODS
-from ..case.numerics import check_velocity_gradient_limiting
+from ..case.numerics import check_pressure_velocity_coupling, check_velocity_gradient_limiting
 from ..case.setup import CaseSettings, latest_time_dir
 from ..derivatives.fit import NONLINEAR_TERMS
 from ..errors import ConfigurationError, HydroderivError
@@ -65,7 +65,7 @@ from .workspace import Workspace, is_suboff
 
 FAILED_FILE = "failed.json"
 STUDY_KEYS = {"body", "body_dir", "level", "speed", "speed_knots", "n_procs", "work", "method", "turbulence_model",
-              "limit_pressure_gradient", "limit_velocity_gradient"}
+              "limit_pressure_gradient", "limit_velocity_gradient", "pressure_velocity_coupling"}
 
 
 def running_marker(case: Path) -> Path:
@@ -96,6 +96,7 @@ class Study:
     # the unlimited solution and share the unlimited conditions
     limit_pressure_gradient_at_start: bool = False
     limit_velocity_gradient: str = "everywhere"  # or "convection", see case/numerics.py
+    pressure_velocity_coupling: str = "SIMPLE"  # or "SIMPLEC", see case/numerics.py
 
     @classmethod
     def load(cls, path: str | Path) -> Study:
@@ -173,12 +174,14 @@ class Study:
             limit_pressure_gradient_at_start=limit_pressure_gradient == "start",
             limit_velocity_gradient=check_velocity_gradient_limiting(
                 head.get("limit_velocity_gradient", "everywhere"), str(path)),
+            pressure_velocity_coupling=check_pressure_velocity_coupling(
+                head.get("pressure_velocity_coupling", "SIMPLE"), str(path)),
         )
 
     @property
     def workspace(self) -> Workspace:
         return Workspace(self.work, self.level, self.method, self.mesh_options, self.turbulence_model,
-                         self.limit_pressure_gradient, self.limit_velocity_gradient)
+                         self.limit_pressure_gradient, self.limit_velocity_gradient, self.pressure_velocity_coupling)
 
     def case_settings(self, body: Body) -> CaseSettings:
         """What every condition of this study needs besides the condition itself."""
@@ -187,7 +190,8 @@ class Study:
                             turbulence_model=self.turbulence_model,
                             limit_pressure_gradient=self.limit_pressure_gradient,
                             limit_pressure_gradient_at_start=self.limit_pressure_gradient_at_start,
-                            limit_velocity_gradient=self.limit_velocity_gradient)
+                            limit_velocity_gradient=self.limit_velocity_gradient,
+                            pressure_velocity_coupling=self.pressure_velocity_coupling)
 
     def frame_method(self, condition: Condition) -> str:
         """The frame ``condition`` is solved in. Without rotation both methods are the same translation, so

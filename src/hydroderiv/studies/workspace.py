@@ -35,6 +35,7 @@ class Workspace:
     turbulence_model: str = DEFAULT_TURBULENCE_MODEL
     limit_pressure_gradient: bool = False
     limit_velocity_gradient: str = "everywhere"
+    pressure_velocity_coupling: str = "SIMPLE"
 
     @property
     def geometry_dir(self) -> Path:
@@ -49,7 +50,8 @@ class Workspace:
             f"-{self.turbulence_model}" if self.turbulence_model != DEFAULT_TURBULENCE_MODEL else "") + (
             "-limited-grad-p" if self.limit_pressure_gradient else "") + (
             {"everywhere": "", "convection": "-grad-U-limited-in-convection",
-             "nowhere": "-unlimited-grad-U"}[self.limit_velocity_gradient])
+             "nowhere": "-unlimited-grad-U"}[self.limit_velocity_gradient]) + (
+            f"-{self.pressure_velocity_coupling}" if self.pressure_velocity_coupling != "SIMPLE" else "")
         return self.root / folder / name
 
     def body(self, config: str | None = None, body_dir: str | Path | None = None) -> Body:
