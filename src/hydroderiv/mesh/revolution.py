@@ -199,11 +199,16 @@ def _fin_spacing(fins: Fins, d: RevolutionDesign, s: np.ndarray) -> np.ndarray:
     return d.spacing["fin_cell"] + d.growth * outside
 
 
+def _node_count(lo: float, hi: float, spacing: Callable[[np.ndarray], np.ndarray], samples: int):
+    """Samples sigma on [lo, hi] and the number of cells of size ``spacing`` up to each (trapezoidal)."""
+    sigma = np.linspace(lo, hi, samples)
+    density = 1.0 / spacing(sigma)
+    return sigma, np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(sigma))])
+
+
 def _nodes(length: float, spacing: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
     """Node positions on [0, length] whose spacing follows ``spacing(sigma)``."""
-    sigma = np.linspace(0.0, length, 20001)
-    density = 1.0 / spacing(sigma)
-    count = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(sigma))])
+    sigma, count = _node_count(0.0, length, spacing, 20001)
     n = max(2, math.ceil(count[-1]))
     return np.interp(np.linspace(0.0, count[-1], n + 1), count, sigma)
 
@@ -358,9 +363,7 @@ def meridian_grid(profile: Profile, d: RevolutionDesign, fins: Fins | None = Non
 
 def _spaced(lo: float, hi: float, n: int, spacing: Callable[[np.ndarray], np.ndarray]) -> np.ndarray:
     """``n`` + 1 nodes from ``lo`` to ``hi`` whose spacing is in proportion to ``spacing(s)``."""
-    sigma = np.linspace(lo, hi, 2001)
-    density = 1.0 / spacing(sigma)
-    count = np.concatenate([[0.0], np.cumsum(0.5 * (density[1:] + density[:-1]) * np.diff(sigma))])
+    sigma, count = _node_count(lo, hi, spacing, 2001)
     return np.interp(np.linspace(0.0, count[-1], n + 1), count, sigma)
 
 
