@@ -165,46 +165,26 @@ def test_the_mesh_table_sets_mesh_options_for_every_condition(tmp_path):
         Study.load(write(tmp_path, GOOD + "\n[mesh]\nlayers = 3\n"))
 
 
-def test_another_turbulence_model_keeps_its_conditions_apart_on_the_same_mesh(tmp_path):
-    sst = Study.load(write(tmp_path, GOOD))
-    shih = Study.load(write(tmp_path, GOOD.replace('level = "coarse"', 'level = "coarse"\nturbulence_model = "ShihQuadraticKE"')))
-    straight = Condition(sst.speed)
-    assert shih.workspace.mesh_dir == sst.workspace.mesh_dir  # one mesh
-    assert shih.case_dir(straight).parent.name == "conditions-ShihQuadraticKE"
-    assert sst.case_dir(straight).parent.name == "conditions"
-    assert shih.case_settings(shih.workspace.body("AFF-1")).turbulence_model == "ShihQuadraticKE"
-
-
-def test_a_limited_pressure_gradient_keeps_its_conditions_apart_on_the_same_mesh(tmp_path):
+@pytest.mark.parametrize(
+    "lines, folder, setting, value, default",
+    [
+        ('turbulence_model = "ShihQuadraticKE"', "conditions-ShihQuadraticKE", "turbulence_model", "ShihQuadraticKE",
+         "kOmegaSST"),
+        ("limit_pressure_gradient = true", "conditions-limited-grad-p", "limit_pressure_gradient", True, False),
+        ('limit_velocity_gradient = "convection"\nlimit_pressure_gradient = true',
+         "conditions-limited-grad-p-grad-U-limited-in-convection", "limit_velocity_gradient", "convection", "everywhere"),
+        ('pressure_velocity_coupling = "SIMPLEC"', "conditions-SIMPLEC", "pressure_velocity_coupling", "SIMPLEC", "SIMPLE"),
+    ],
+)
+def test_a_solver_setting_keeps_its_conditions_apart_on_the_same_mesh(tmp_path, lines, folder, setting, value, default):
     plain = Study.load(write(tmp_path, GOOD))
-    limited = Study.load(write(tmp_path, GOOD.replace('level = "coarse"', 'level = "coarse"\nlimit_pressure_gradient = true')))
+    other = Study.load(write(tmp_path, GOOD.replace('level = "coarse"', f'level = "coarse"\n{lines}')))
     straight = Condition(plain.speed)
-    assert limited.workspace.mesh_dir == plain.workspace.mesh_dir
-    assert limited.case_dir(straight).parent.name == "conditions-limited-grad-p"
-    assert limited.case_settings(limited.workspace.body("AFF-1")).limit_pressure_gradient
-    assert not plain.case_settings(plain.workspace.body("AFF-1")).limit_pressure_gradient
-
-
-def test_a_velocity_gradient_limited_in_convection_only_keeps_its_conditions_apart_on_the_same_mesh(tmp_path):
-    plain = Study.load(write(tmp_path, GOOD))
-    text = GOOD.replace('level = "coarse"', 'level = "coarse"\nlimit_velocity_gradient = "convection"\nlimit_pressure_gradient = true')
-    convection = Study.load(write(tmp_path, text))
-    straight = Condition(plain.speed)
-    assert convection.workspace.mesh_dir == plain.workspace.mesh_dir
-    assert convection.case_dir(straight).parent.name == "conditions-limited-grad-p-grad-U-limited-in-convection"
-    assert convection.case_settings(convection.workspace.body("AFF-1")).limit_velocity_gradient == "convection"
-    assert plain.case_settings(plain.workspace.body("AFF-1")).limit_velocity_gradient == "everywhere"
-
-
-def test_simplec_keeps_its_conditions_apart_on_the_same_mesh(tmp_path):
-    plain = Study.load(write(tmp_path, GOOD))
-    simplec = Study.load(write(tmp_path, GOOD.replace('level = "coarse"', 'level = "coarse"\npressure_velocity_coupling = "SIMPLEC"')))
-    straight = Condition(plain.speed)
-    assert simplec.workspace.mesh_dir == plain.workspace.mesh_dir
-    assert simplec.case_dir(straight).parent.name == "conditions-SIMPLEC"
+    assert other.workspace.mesh_dir == plain.workspace.mesh_dir  # one mesh
+    assert other.case_dir(straight).parent.name == folder
     assert plain.case_dir(straight).parent.name == "conditions"
-    assert simplec.case_settings(simplec.workspace.body("AFF-1")).pressure_velocity_coupling == "SIMPLEC"
-    assert plain.case_settings(plain.workspace.body("AFF-1")).pressure_velocity_coupling == "SIMPLE"
+    assert getattr(other.case_settings(other.workspace.body("AFF-1")), setting) == value
+    assert getattr(plain.case_settings(plain.workspace.body("AFF-1")), setting) == default
 
 
 def test_a_pressure_gradient_limited_at_the_start_shares_the_unlimited_conditions(tmp_path):
