@@ -51,10 +51,10 @@ LIMITED_FOR_CONVECTION = "limitedForConvection"
 # pressure by 0.3. On meshes that resolve the wall (the body-fitted SUBOFF hull at y+ = 1-5, first cells
 # 17-84 um under 5-30 mm steps along the nose) it blew up within ten iterations of a cold start, with or
 # without a turbulence model: the wall cells on the nose took velocities of 100-200 m/s straight into the
-# wall by the fifth iteration, a pressure-velocity mode that SIMPLE's pressure relaxation lets grow in cells
-# that thin. "SIMPLEC" (OpenFOAM's `consistent` SIMPLE) drops the neglected neighbour terms from the
-# pressure equation's coefficients, so the pressure needs little relaxation (0.9 here); on the same meshes
-# it ran from uniform flow without trouble (2026-12-02).
+# wall by the fifth iteration (a decoupled pressure-velocity mode in cells that thin, we think; not checked
+# further). "SIMPLEC" (OpenFOAM's `consistent` SIMPLE) keeps the neighbour coefficients in the velocity
+# correction, so the pressure needs little relaxation (0.9 here); on the same meshes it ran from uniform
+# flow without trouble (2026-12-02).
 PRESSURE_VELOCITY_COUPLINGS = {"SIMPLE": {"consistent": False, "p": 0.3}, "SIMPLEC": {"consistent": True, "p": 0.9}}
 
 
