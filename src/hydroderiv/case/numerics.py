@@ -47,7 +47,8 @@ VELOCITY_GRADIENT_LIMITING = ("everywhere", "convection", "nowhere")
 LIMITED_FOR_CONVECTION = "limitedForConvection"
 
 
-# The pressure-velocity coupling. "SIMPLE" (the default, and that of every committed result) relaxes the
+# The pressure-velocity coupling. "SIMPLE" (the default, and that of every result before the resolved-wall
+# studies of 2026-12-02) relaxes the
 # pressure by 0.3. On meshes that resolve the wall (the body-fitted SUBOFF hull at y+ = 1-5, first cells
 # 17-84 um under 5-30 mm steps along the nose) it blew up within ten iterations of a cold start, with or
 # without a turbulence model: the wall cells on the nose took velocities of 100-200 m/s straight into the
