@@ -48,8 +48,8 @@ LIMITED_FOR_CONVECTION = "limitedForConvection"
 
 
 # The pressure-velocity coupling. "SIMPLE" (the default, and that of every result before the resolved-wall
-# studies of 2026-12-02) relaxes the pressure by 0.3. On meshes that resolve the wall (the body-fitted SUBOFF hull at y+ = 1-5, first cells
-# 17-84 um under 5-30 mm steps along the nose) it blew up within ten iterations of a cold start, with or
+# studies of 2026-12-02) relaxes the pressure by 0.3. On meshes that resolve the wall (the body-fitted
+# SUBOFF hull at y+ = 1-5, first cells 17-84 um under 5-30 mm steps along the nose) it blew up within ten iterations of a cold start, with or
 # without a turbulence model: the wall cells on the nose took velocities of 100-200 m/s straight into the
 # wall by the fifth iteration (a decoupled pressure-velocity mode in cells that thin, we think; not checked
 # further). "SIMPLEC" (OpenFOAM's `consistent` SIMPLE) keeps the neighbour coefficients in the velocity

@@ -412,8 +412,7 @@ def _align_with_fins(grid: MeridianGrid, fins: Fins, d: RevolutionDesign, profil
     counts = np.zeros(3, dtype=int)
     for bounds, spacing in stretches.values():  # the most cells any aligned line needs, per stretch
         for n in range(3):
-            sigma = np.linspace(bounds[n], bounds[n + 1], 2001)
-            counts[n] = max(counts[n], math.ceil(np.trapezoid(1.0 / spacing(sigma), sigma)))
+            counts[n] = max(counts[n], math.ceil(_node_count(bounds[n], bounds[n + 1], spacing, 2001)[1][-1]))
     n_new = int(counts.sum())
     new_s = np.empty((n_new + 1, grid.s.shape[1]))
     new_r = np.empty_like(new_s)
