@@ -24,8 +24,8 @@ _FOAM_HEADER = "FoamFile\n{{\n    version 2.0;\n    format ascii;\n    class {};
 @pytest.fixture
 def strip_of_faces():
     """Builder of a hand-made ascii polyMesh under ``case/constant/polyMesh`` with one patch ``hull``: faces
-    side by side along x, face k spanning x_edges[k] to x_edges[k + 1] at y = 0, one unit high in z. Other
-    files of the case (fields) are for the test to write."""
+    side by side along x, face k spanning x_edges[k] to x_edges[k + 1] at y = 0, one unit high in z, next
+    to cell k (area vector (0, -width, 0)). Other files of the case (fields) are for the test to write."""
 
     def build(case, x_edges):
         mesh = case / "constant/polyMesh"
@@ -39,6 +39,8 @@ def strip_of_faces():
                                     + "".join(f"4({' '.join(map(str, f))})\n" for f in faces) + ")\n")
         (mesh / "boundary").write_text(_FOAM_HEADER.format("polyBoundaryMesh", "boundary")
                                        + f"1\n(\n    hull\n    {{\n        type wall;\n        nFaces {n};\n        startFace 0;\n    }}\n)\n")
+        (mesh / "owner").write_text(_FOAM_HEADER.format("labelList", "owner") + f"{n}\n(\n"
+                                    + "".join(f"{k}\n" for k in range(n)) + ")\n")  # face k on cell k
         return mesh
 
     return build

@@ -197,9 +197,22 @@ def _study_flow(args: argparse.Namespace) -> int:
         for part, slices in report.items():
             table.add_row(name, part, " ".join(f"{s['mean']:.0f} ({s['above_log_layer_pct']:.0f})" for s in slices))
     console.print(table)
+    loads = {name: report["loads_along_x"] for name, report in reports.items()}
+    table = Table(title="side and vertical force along x, aft to fore: Y' and Z' of each slice, in 1e-6")
+    table.add_column("condition")
+    table.add_column("part")
+    table.add_column("Y'")
+    table.add_column("Z'")
+    for name, report in loads.items():
+        if "error" in report:
+            table.add_row(name, "", report["error"], "")
+            continue
+        for part, slices in report.items():
+            table.add_row(name, part, *(" ".join(f"{1e6 * s[k]:.0f}" for s in slices) for k in ("Y", "Z")))
+    console.print(table)
     out = Path(args.out) if args.out else study.work / "reversed-flow.json"
     atomic_write_text(out, json.dumps({"study": str(study.path), "level": study.level, "conditions": reversed_flow,
-                                       "yplus_along_x": yplus}, indent=2) + "\n")
+                                       "yplus_along_x": yplus, "loads_along_x": loads}, indent=2) + "\n")
     console.print(f"written: {out}")
     return 0
 
@@ -368,7 +381,7 @@ def build_parser() -> argparse.ArgumentParser:
     status = actions.add_parser("status", help="what is done, running, failed and left")
     status.add_argument("file")
     status.set_defaults(func=_study_status)
-    flow = actions.add_parser("flow", help="reversed flow at the wall per condition and body part, and the y+ along the hull")
+    flow = actions.add_parser("flow", help="reversed flow at the wall per condition and body part, the y+ along the hull, and the loads along each part")
     flow.add_argument("file")
     flow.add_argument("--out", help="JSON output (default WORK/reversed-flow.json)")
     flow.set_defaults(func=_study_flow)

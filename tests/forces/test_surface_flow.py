@@ -1,12 +1,14 @@
 """The wall reports on hand-made meshes: reversed flow (face areas, the sign of the wall shear, the turning
-stream) and y+ along the body."""
+stream), y+ along the body and the loads along it."""
 
 import numpy as np
 import pytest
 
 from hydroderiv.errors import HydroderivError
-from hydroderiv.forces.surface_flow import describe_reversed_flow, describe_yplus_along_x, reversed_flow, yplus_along_x
-from hydroderiv.mesh.quality import patch_faces
+from hydroderiv.forces import PrimeScales
+from hydroderiv.forces.surface_flow import (describe_reversed_flow, describe_yplus_along_x, loads_along_x, reversed_flow,
+                                            yplus_along_x)
+from hydroderiv.mesh.quality import patch_faces, patch_owners
 
 HEADER = "FoamFile\n{{\n    version 2.0;\n    format {fmt};\n    class {cls};\n    object {obj};\n}}\n"
 
@@ -137,3 +139,60 @@ def test_yplus_along_x_weights_by_area_and_finds_the_slice_beyond_the_log_layer(
     assert describe_yplus_along_x({"hull": resolved}) == "hull y+ along x, aft to fore: 0.53 1.2 (% of area above 300: 0 0)"
     with pytest.raises(HydroderivError, match="yPlus is missing"):
         yplus_along_x(tmp_path, patch_faces(mesh, ["hull"]), "hull")
+
+
+def _pressure_and_shear(case, pressure, shear):
+    time_dir = case / "300"
+    time_dir.mkdir()
+    (time_dir / "p").write_text(HEADER.format(fmt="ascii", cls="volScalarField", obj="p") + f"""
+dimensions      [0 2 -2 0 0 0 0];
+internalField   {pressure};
+boundaryField
+{{
+    hull {{ type zeroGradient; }}
+}}
+""")
+    (time_dir / "wallShearStress").write_text(HEADER.format(fmt="ascii", cls="volVectorField", obj="wallShearStress") + f"""
+dimensions      [0 2 -2 0 0 0 0];
+internalField   uniform (0 0 0);
+boundaryField
+{{
+    hull {{ type calculated; value uniform ({shear}); }}
+}}
+""")
+    return time_dir
+
+
+def test_loads_along_x_add_the_pressure_of_the_next_cell_and_the_wall_shear_per_slice(tmp_path, strip_of_faces):
+    # four 1 m^2 faces along x with the fluid on their +y side (area vectors (0, -1, 0)): the fore half
+    # at a suction, the aft half at an overpressure, as on a fin whose aft half pulls against its fore half
+    mesh = strip_of_faces(tmp_path, [0, 1, 2, 3, 4])
+    time_dir = _pressure_and_shear(tmp_path, "nonuniform List<scalar> 4(3 2 -1 -1)", "0.5 0.2 0.1")
+    faces, owners = patch_faces(mesh, ["hull"]), patch_owners(mesh, ["hull"])
+    assert owners["hull"].tolist() == [0, 1, 2, 3]
+    scales = PrimeScales(rho=2.0, speed=1.0, length=1.0)  # 0.5 rho U^2 L^2 = 1 N
+    aft, fore = loads_along_x(time_dir, faces, owners, "hull", scales, bins=2)
+    # each face: rho (p S_f - |S_f| tau_w) = 2 (-0.5, -p - 0.2, -0.1): the overpressure pushes towards -y,
+    # the shear stress on the fluid is the opposite of the fluid's pull on the wall
+    assert (aft["x_from"], aft["x_to"], fore["x_to"]) == (0.5, 2.0, 3.5)
+    assert aft == {**aft, "faces": 2, "Y": pytest.approx(-10.8), "Z": pytest.approx(-0.4)}
+    assert fore == {**fore, "faces": 2, "Y": pytest.approx(3.2), "Z": pytest.approx(-0.4)}
+    # twice the speed: a quarter of the coefficients
+    faster = loads_along_x(time_dir, faces, owners, "hull", PrimeScales(2.0, 2.0, 1.0), bins=2)
+    assert [s["Y"] for s in faster] == pytest.approx([-2.7, 0.8])
+
+
+def test_loads_along_x_take_a_uniform_pressure_and_name_what_is_missing(tmp_path, strip_of_faces):
+    mesh = strip_of_faces(tmp_path, [0, 1, 2])
+    faces, owners = patch_faces(mesh, ["hull"]), patch_owners(mesh, ["hull"])
+    with pytest.raises(HydroderivError, match="p is missing: the run wrote no pressure"):
+        loads_along_x(tmp_path, faces, owners, "hull", PrimeScales(2.0, 1.0, 1.0))
+    time_dir = _pressure_and_shear(tmp_path, "uniform 1", "0 0 0")
+    (whole,) = loads_along_x(time_dir, faces, owners, "hull", PrimeScales(2.0, 1.0, 1.0), bins=1)
+    assert whole == {**whole, "faces": 2, "Y": pytest.approx(-4.0), "Z": 0.0}
+    with pytest.raises(HydroderivError, match="1 owner cells for 2 faces"):
+        loads_along_x(time_dir, faces, {"hull": owners["hull"][:1]}, "hull", PrimeScales(2.0, 1.0, 1.0))
+    shear = time_dir / "wallShearStress"
+    shear.write_text(shear.read_text().replace("uniform (0 0 0); }", "nonuniform List<vector> 3((0 0 0) (0 0 0) (0 0 0)); }"))
+    with pytest.raises(HydroderivError, match="3 values on hull, but the mesh has 2 faces"):
+        loads_along_x(time_dir, faces, owners, "hull", PrimeScales(2.0, 1.0, 1.0))

@@ -72,6 +72,20 @@ def test_port_turn_mirrors_the_starboard_turn(runs):
     assert starboard["coefficients"]["N"] < 0
 
 
+def test_the_loads_along_the_hull_mirror_between_the_turns_and_add_up_to_its_side_force(runs):
+    starboard = runs(Condition(SPEED, yaw_rate_prime=RATE))
+    port = runs(Condition(SPEED, yaw_rate_prime=-RATE))
+    along, mirrored = starboard["loads_along_x"]["hull"], port["loads_along_x"]["hull"]
+    largest = max(abs(s["Y"]) for s in along)
+    assert [s["faces"] for s in mirrored] == [s["faces"] for s in along]
+    assert [s["Y"] for s in mirrored] == pytest.approx([-s["Y"] for s in along], abs=0.05 * largest)
+    assert [s["Z"] for s in mirrored] == pytest.approx([s["Z"] for s in along], abs=0.05 * largest)
+    # the slices hold the hull's whole side force (at the last iteration, the record's over its window)
+    assert sum(s["Y"] for s in along) == pytest.approx(starboard["coefficients"]["Y"], abs=0.02 * largest)
+    # turning to starboard, the nose moves to starboard through the water, which pushes it to port
+    assert along[-1]["Y"] < -0.5 * largest
+
+
 def test_a_pitch_turn_is_the_yaw_turn_turned_about_the_body_axis(runs):
     """A body of revolution turned by 90 degrees about x (y to z, z to -y) takes a yaw turn r' into a pitch
     turn q' = -r', its side force into Z' = Y' and its yaw moment into M' = -N': so Z'q = -Y'r and M'q = N'r.

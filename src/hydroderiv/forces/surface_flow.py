@@ -14,6 +14,10 @@ wall still runs aft, only turned sideways.
 
 y+ along the body: the first cell's y+ in slices along x (yplus_along_x), because the patch-wide mean hides
 the regions, such as a tail cone without prism layers, where a wall-function mesh is out of its range.
+
+Loads along the body: each part's side and vertical force in slices along x (loads_along_x), because a part's
+total hides where it arises: a fin's lift belongs to its fore half, and a fin whose aft half pulls the other
+way has lost it to its own boundary layer.
 """
 
 from __future__ import annotations
@@ -25,14 +29,34 @@ from foamlib import FoamFieldFile
 
 from ..errors import HydroderivError
 from ..mesh.quality import slices_along_x
+from .coefficients import PrimeScales
 
 FIELD = "wallShearStress"  # written by OpenFOAM's wallShearStress function object (see case/setup.py)
 YPLUS_FIELD = "yPlus"  # written by OpenFOAM's yPlus function object
+PRESSURE_FIELD = "p"  # simpleFoam's kinematic pressure, p / rho
 # Above this y+ the first cell centre lies beyond the logarithmic layer that wall functions assume.
 LOG_LAYER_TOP = 300.0
 
 
 WallFaces = dict[str, tuple[np.ndarray, np.ndarray]]  # per patch: face centres and area vectors (patch_faces)
+
+
+def _field_file(time_dir: str | Path, field: str, what: str) -> FoamFieldFile:
+    path = Path(time_dir) / field
+    if not path.is_file():
+        raise HydroderivError(f"{path} is missing: the run wrote no {what}")
+    return FoamFieldFile(path)
+
+
+def _patch_values(file: FoamFieldFile, patch: str, n_faces: int, n_components: int) -> np.ndarray:
+    """A field's values on one patch, (n_faces,) or (n_faces, n_components), a uniform value repeated."""
+    values = np.asarray(file.boundary_field[patch]["value"], dtype=float)
+    shape = (n_faces,) if n_components == 1 else (n_faces, n_components)
+    if values.size not in (n_components, n_faces * n_components):
+        raise HydroderivError(f"{file.path}: {values.size // n_components} values on {patch}, but the mesh has "
+                              f"{n_faces} faces")
+    return np.broadcast_to(values.reshape(-1, n_components).squeeze(-1) if n_components == 1
+                           else values.reshape(-1, n_components), shape)
 
 
 def reversed_flow(
@@ -47,15 +71,10 @@ def reversed_flow(
     the stress the wall puts on the fluid, so it points against the flow next to the wall: the flow runs
     back where it has a positive component along that stream.
     """
-    path = Path(time_dir) / FIELD
-    if not path.is_file():
-        raise HydroderivError(f"{path} is missing: the run wrote no wall shear stress")
-    boundary = FoamFieldFile(path).boundary_field
+    shear_file = _field_file(time_dir, FIELD, "wall shear stress")
     out = {}
     for patch, (centres, areas) in faces.items():
-        shear = np.asarray(boundary[patch]["value"], dtype=float).reshape(-1, 3)
-        if len(shear) != len(areas):
-            raise HydroderivError(f"{path}: {len(shear)} values on {patch}, but the mesh has {len(areas)} faces")
+        shear = _patch_values(shear_file, patch, len(areas), 3)
         stream = np.asarray(inflow, dtype=float) - np.cross(np.asarray(angular_velocity, dtype=float), centres)
         back = np.einsum("ij,ij->i", shear, stream) > 0.0
         area = np.linalg.norm(areas, axis=1)
@@ -75,12 +94,9 @@ def yplus_along_x(time_dir: str | Path, faces: WallFaces, patch: str, bins: int 
     own surface cells. Each slice: its x range (m), faces, the area-weighted mean and the largest y+, and
     the % of its area above LOG_LAYER_TOP.
     """
-    path = Path(time_dir) / YPLUS_FIELD
-    if not path.is_file():
-        raise HydroderivError(f"{path} is missing: the run wrote no y+")
     centres, areas = faces[patch]
     area = np.linalg.norm(areas, axis=1)
-    yplus = np.broadcast_to(np.asarray(FoamFieldFile(path).boundary_field[patch]["value"], dtype=float), area.shape)
+    yplus = _patch_values(_field_file(time_dir, YPLUS_FIELD, "y+"), patch, len(area), 1)
     edges, slot = slices_along_x(centres[:, 0], bins)
     out = []
     for k in range(bins):
@@ -91,6 +107,36 @@ def yplus_along_x(time_dir: str | Path, faces: WallFaces, patch: str, bins: int 
                         "faces": int(inside.sum()), "mean": round(float(np.average(y, weights=w)), 1),
                         "max": round(float(y.max()), 1),
                         "above_log_layer_pct": round(100.0 * float(w[y > LOG_LAYER_TOP].sum() / w.sum()), 1)})
+    return out
+
+
+def loads_along_x(time_dir: str | Path, faces: WallFaces, owners: dict[str, np.ndarray], patch: str,
+                  scales: PrimeScales, bins: int = 8) -> list[dict]:
+    """Side and vertical force (Y', Z') on one patch of ``faces`` in ``bins`` equal slices of its length along
+    x, aft to fore.
+
+    Each face carries rho (p S_f - |S_f| tau_w), the sum OpenFOAM's forces function object makes, so the
+    slices add up to the part's recorded force: p is that of the cell next to the face (``owners``, see
+    mesh.quality.patch_owners; the wall's zero-gradient condition), S_f points out of the fluid, and the wall
+    shear stress tau_w is the stress on the fluid. Each slice: its x range (m), faces, Y' and Z'.
+    """
+    pressure = _field_file(time_dir, PRESSURE_FIELD, "pressure").internal_field
+    centres, areas = faces[patch]
+    cells = owners[patch]
+    if len(cells) != len(areas):
+        raise HydroderivError(f"{patch}: {len(cells)} owner cells for {len(areas)} faces")
+    p = np.asarray(pressure, dtype=float)
+    p = p[cells] if p.ndim else np.full(len(cells), float(p))
+    shear = _patch_values(_field_file(time_dir, FIELD, "wall shear stress"), patch, len(areas), 3)
+    force = scales.rho * (p[:, None] * areas - np.linalg.norm(areas, axis=1)[:, None] * shear) / scales.force
+    edges, slot = slices_along_x(centres[:, 0], bins)
+    out = []
+    for k in range(bins):
+        inside = slot == k
+        if inside.any():
+            y, z = force[inside, 1].sum(), force[inside, 2].sum()
+            out.append({"x_from": round(float(edges[k]), 3), "x_to": round(float(edges[k + 1]), 3),
+                        "faces": int(inside.sum()), "Y": float(f"{y:.4g}"), "Z": float(f"{z:.4g}")})
     return out
 
 

@@ -164,13 +164,8 @@ def face_geometry(points: np.ndarray, face: np.ndarray) -> tuple[np.ndarray, np.
     return centre, triangles.sum(axis=0)
 
 
-def patch_faces(mesh_dir: str | Path, patches: tuple[str, ...] | list[str]) -> dict[str, tuple[np.ndarray, np.ndarray]]:
-    """(face centres, face area vectors) of each named patch of an ascii polyMesh, in metres.
-
-    Only the faces of those patches are parsed (they sit in one contiguous range of the faces file each),
-    so this stays quick on meshes of millions of cells.
-    """
-    mesh_dir = Path(mesh_dir)
+def _patch_ranges(mesh_dir: Path, patches) -> dict[str, tuple[int, int]]:
+    """(start face, face count) of each named patch, from the polyMesh's boundary file."""
     boundary = (mesh_dir / "boundary").read_text()
     ranges = {}
     for patch in patches:
@@ -179,7 +174,29 @@ def patch_faces(mesh_dir: str | Path, patches: tuple[str, ...] | list[str]) -> d
             raise HydroderivError(f"{mesh_dir / 'boundary'} has no patch {patch!r}")
         entries = dict(re.findall(r"(\w+)\s+([^;]+);", block.group(1)))
         ranges[patch] = (int(entries["startFace"]), int(entries["nFaces"]))
+    return ranges
 
+
+def patch_owners(mesh_dir: str | Path, patches: tuple[str, ...] | list[str]) -> dict[str, np.ndarray]:
+    """The cell next to each face of each named patch of an ascii polyMesh (its owner), in face order.
+
+    A field with a zero-gradient condition on the patch (the pressure on a wall) has these cells' values
+    on its faces, which OpenFOAM does not write into the field file.
+    """
+    mesh_dir = Path(mesh_dir)
+    ranges = _patch_ranges(mesh_dir, patches)
+    owner = np.array(poly_list(mesh_dir / "owner")[1:].split(")")[0].split(), dtype=np.int64)
+    return {patch: owner[start : start + n] for patch, (start, n) in ranges.items()}
+
+
+def patch_faces(mesh_dir: str | Path, patches: tuple[str, ...] | list[str]) -> dict[str, tuple[np.ndarray, np.ndarray]]:
+    """(face centres, face area vectors) of each named patch of an ascii polyMesh, in metres.
+
+    Only the faces of those patches are parsed (they sit in one contiguous range of the faces file each),
+    so this stays quick on meshes of millions of cells.
+    """
+    mesh_dir = Path(mesh_dir)
+    ranges = _patch_ranges(mesh_dir, patches)
     points = read_points(mesh_dir)
 
     wanted = sorted((start, n, patch) for patch, (start, n) in ranges.items())

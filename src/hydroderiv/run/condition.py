@@ -23,9 +23,9 @@ from ..case.setup import CaseSettings, latest_time_dir, write_condition_case
 from ..errors import HydroderivError
 from ..forces import COEFFICIENT_NAMES, PrimeScales
 from ..forces.surface_flow import FIELD as WALL_SHEAR
-from ..forces.surface_flow import YPLUS_FIELD, reversed_flow, yplus_along_x
+from ..forces.surface_flow import PRESSURE_FIELD, YPLUS_FIELD, loads_along_x, reversed_flow, yplus_along_x
 from ..mesh.design import is_thin_part
-from ..mesh.quality import patch_faces
+from ..mesh.quality import patch_faces, patch_owners
 from .monitor import ConvergenceCriterion
 from .openfoam import openfoam_version_from_log, run_application
 from .solver import Progress, run_steady
@@ -52,12 +52,13 @@ def _yplus_summary(case: Path) -> dict:
 
 
 # The record keys _wall_reports fills, each with the OpenFOAM field (and function object) it reads.
-WALL_REPORTS = {"reversed_flow": WALL_SHEAR, "yplus_along_x": YPLUS_FIELD}
+WALL_REPORTS = {"reversed_flow": WALL_SHEAR, "yplus_along_x": YPLUS_FIELD, "loads_along_x": PRESSURE_FIELD}
 
 
 def _wall_reports(case: Path, condition: Condition, settings: CaseSettings) -> dict[str, dict]:
     """The reports on the wall flow of a run, by record key (empty without a body): the reversed flow per
-    body part, and the y+ along each part that is not thin (the hull).
+    body part, the y+ along each part that is not thin (the hull), and the side and vertical force along
+    each part.
 
     Reports, not results: one that cannot be made gives its message instead, and the forces stand. The
     parts' faces are read once for both (a few seconds on a medium mesh).
@@ -70,6 +71,7 @@ def _wall_reports(case: Path, condition: Condition, settings: CaseSettings) -> d
                                                      condition.angular_velocity(settings.length)),
         "yplus_along_x": lambda faces: {part: yplus_along_x(time_dir, faces, part)
                                         for part in faces if not is_thin_part(part)},
+        "loads_along_x": lambda faces: _loads_along_x(case, time_dir, faces, condition, settings),
     }
     try:
         faces = patch_faces(case / "constant/polyMesh", settings.components)
@@ -82,6 +84,12 @@ def _wall_reports(case: Path, condition: Condition, settings: CaseSettings) -> d
         except (HydroderivError, OSError) as error:
             reports[key] = {"error": str(error)}
     return reports
+
+
+def _loads_along_x(case: Path, time_dir: Path, faces, condition: Condition, settings: CaseSettings) -> dict:
+    owners = patch_owners(case / "constant/polyMesh", list(faces))
+    scales = PrimeScales(settings.fluid.rho, condition.speed, settings.length)
+    return {part: loads_along_x(time_dir, faces, owners, part, scales) for part in faces}
 
 
 def add_wall_reports(case: str | Path, settings: CaseSettings, record: dict | None = None) -> dict[str, dict]:

@@ -314,7 +314,7 @@ def warm_start_candidates(study: Study, condition: Condition, finished: dict[Pat
 
 def study_wall_reports(study: Study, log: Callable[[str], None] = print) -> dict[str, dict[str, dict]]:
     """The wall-flow reports of every finished condition, by name and then record key: the reversed flow
-    per part and the y+ along the hull (see forces/surface_flow.py).
+    per part, the y+ along the hull and the loads along each part (see forces/surface_flow.py).
 
     Conditions finished before a report existed get it now from their saved solution.
     """
@@ -328,7 +328,7 @@ def study_wall_reports(study: Study, log: Callable[[str], None] = print) -> dict
             continue
         missing = [key for key in WALL_REPORTS if key not in record]
         if missing:
-            names = {"reversed_flow": "reversed flow", "yplus_along_x": "y+ along x"}
-            log(f"  {condition.name}: {' and '.join(names[k] for k in missing)} from the saved solution ...")
+            names = {"reversed_flow": "reversed flow", "yplus_along_x": "y+ along x", "loads_along_x": "loads along x"}
+            log(f"  {condition.name}: {', '.join(names[k] for k in missing)} from the saved solution ...")
         reports[condition.name] = add_wall_reports(case, settings, record)
     return reports
