@@ -172,6 +172,33 @@ def test_a_k_epsilon_model_gets_epsilon_from_the_same_free_stream_and_its_own_wa
         assert f["internalField"] == pytest.approx(expected, rel=1e-6)
 
 
+def test_spalart_allmaras_gets_the_same_free_stream_eddy_viscosity_no_k_and_spaldings_wall_law(tmp_path):
+    from foamlib import FoamFile
+
+    from hydroderiv.case import Condition
+    from hydroderiv.case.fluid import FreestreamTurbulence
+    from hydroderiv.case.setup import CaseSettings, write_condition_case
+
+    mesh = tmp_path / "mesh"
+    (mesh / "constant/polyMesh").mkdir(parents=True)
+    nu = 0.001053 / 998.55
+    settings = CaseSettings(length=4.261, components=("hull",), turbulence_model="SpalartAllmaras")
+    case = write_condition_case(tmp_path / "sa", mesh, Condition(speed=3.344), settings)
+    assert sorted(p.name for p in (case / "0").iterdir()) == ["U", "nuTilda", "nut", "p"]  # no k, omega, epsilon
+    with FoamFile(case / "0/nuTilda") as f:
+        free = f["boundaryField"]["farfield"]["inletValue"]
+        assert f["boundaryField"]["bodyWalls"]["type"] == "fixedValue" and f["boundaryField"]["bodyWalls"]["value"] == 0
+    # the model's eddy viscosity nuTilda chi^3 / (chi^3 + 7.1^3), chi = nuTilda / nu, is the k models'
+    # free-stream 10 nu
+    chi = free / nu
+    assert free * chi**3 / (chi**3 + 7.1**3) == pytest.approx(FreestreamTurbulence().viscosity_ratio * nu, rel=1e-9)
+    with FoamFile(case / "0/nut") as f:
+        assert f["boundaryField"]["bodyWalls"]["type"] == "nutUSpaldingWallFunction"
+    schemes, solution = FoamFile(case / "system/fvSchemes"), FoamFile(case / "system/fvSolution")
+    assert "div(phi,nuTilda)" in schemes["divSchemes"] and "grad(nuTilda)" in schemes["gradSchemes"]
+    assert solution["relaxationFactors"]["equations"]["nuTilda"] == pytest.approx(0.6)
+
+
 def test_an_unknown_turbulence_model_is_named():
     from hydroderiv.case.setup import CaseSettings
     from hydroderiv.errors import ConfigurationError

@@ -33,15 +33,32 @@ class FreestreamTurbulence:
     def epsilon(self, speed: float, nu: float) -> float:
         return C_MU * self.k(speed) * self.omega(speed, nu)
 
+    def nu_tilda(self, nu: float) -> float:
+        """Spalart-Allmaras' working variable that gives the same eddy viscosity, viscosity_ratio * nu.
 
-# RAS models on offer, each with the variable it transports besides k. All use wall functions (y+ about 50).
+        The model's eddy viscosity is nuTilda fv1(chi), chi = nuTilda / nu, fv1 = chi^3 / (chi^3 + cv1^3): so
+        chi solves chi^4 / (chi^3 + cv1^3) = viscosity_ratio (Newton's method from chi = ratio + cv1).
+        """
+        chi = self.viscosity_ratio + SA_CV1
+        for _ in range(50):
+            residual = chi**4 / (chi**3 + SA_CV1**3) - self.viscosity_ratio
+            slope = (chi**6 + 4.0 * chi**3 * SA_CV1**3) / (chi**3 + SA_CV1**3) ** 2
+            chi -= residual / slope
+        return chi * nu
+
+
+# RAS models on offer, each with the fields it transports. All work with wall functions (y+ about 50).
 # k-omega SST is the default (the seed paper's model). Shih's quadratic k-epsilon adds stresses quadratic in
 # the mean strain and rotation: a linear eddy viscosity cannot drive the secondary flow that keeps a
 # junction's corner attached, and SST separated the suction-side corners at the sail's and rudders' trailing
-# edges (issue-4 notes, 2026-11-30).
-TURBULENCE_MODELS = {"kOmegaSST": "omega", "ShihQuadraticKE": "epsilon", "realizableKE": "epsilon"}
+# edges (issue-4 notes, 2026-11-30). Spalart-Allmaras (one equation, for the eddy viscosity itself) was
+# made for aerofoils in adverse pressure gradients: SST's boundary layers run back over the last tenth of
+# the thick NACA 0020 fins even straight ahead (issue-4 notes, 2026-12-02).
+TURBULENCE_MODELS = {"kOmegaSST": ("k", "omega"), "ShihQuadraticKE": ("k", "epsilon"), "realizableKE": ("k", "epsilon"),
+                     "SpalartAllmaras": ("nuTilda",)}
 DEFAULT_TURBULENCE_MODEL = "kOmegaSST"
 C_MU = 0.09  # epsilon = C_mu k omega
+SA_CV1 = 7.1  # Spalart & Allmaras (1994), the constant of the wall-damping function fv1
 
 
 def check_turbulence_model(name: str, source: str = "") -> str:

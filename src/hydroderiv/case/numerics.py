@@ -11,11 +11,14 @@ from pathlib import Path
 
 from .._foam import write_foam_dict
 from ..errors import ConfigurationError
+from .fluid import TURBULENCE_MODELS
 
 
 SECOND_ORDER = "bounded Gauss linearUpwind"  # followed by the name of the gradient scheme it reconstructs with
 FIRST_ORDER = "bounded Gauss upwind"
 LIMITED_GRADIENT = "cellLimited Gauss linear 1"  # no face value beyond the neighbouring cells' values
+# every field some model of TURBULENCE_MODELS transports: k, omega, epsilon, nuTilda
+TURBULENCE_FIELDS = tuple(dict.fromkeys(field for fields in TURBULENCE_MODELS.values() for field in fields))
 
 
 # The pressure gradient limited like the others. On a mesh whose first prism layer resolves the wall
@@ -94,7 +97,7 @@ def _convection_schemes(second_order: bool, limiters: GradientLimiters) -> dict[
         limited_for_convection_only = field == "U" and limiters.velocity == "convection"
         return f"{SECOND_ORDER} {LIMITED_FOR_CONVECTION if limited_for_convection_only else f'grad({field})'}"
 
-    return {f"div(phi,{field})": scheme(field) for field in ("U", "k", "omega", "epsilon")}
+    return {f"div(phi,{field})": scheme(field) for field in ("U", *TURBULENCE_FIELDS)}
 
 
 def _gradient_schemes(limiters: GradientLimiters) -> dict[str, str]:
@@ -103,7 +106,7 @@ def _gradient_schemes(limiters: GradientLimiters) -> dict[str, str]:
         schemes["grad(U)"] = LIMITED_GRADIENT
     elif limiters.velocity == "convection":
         schemes[LIMITED_FOR_CONVECTION] = LIMITED_GRADIENT
-    schemes.update({f"grad({field})": LIMITED_GRADIENT for field in ("k", "omega", "epsilon")})
+    schemes.update({f"grad({field})": LIMITED_GRADIENT for field in TURBULENCE_FIELDS})
     if limiters.pressure:
         schemes["grad(p)"] = LIMITED_PRESSURE_GRADIENT
     return schemes
@@ -140,11 +143,12 @@ def write_numerics(case: Path, second_order: bool = True, limiters: GradientLimi
         {
             "solvers": {
                 "p": {"solver": "GAMG", "smoother": "GaussSeidel", "tolerance": 1e-7, "relTol": 0.05},
-                '"(U|k|omega|epsilon)"': {"solver": "smoothSolver", "smoother": "symGaussSeidel", "tolerance": 1e-8, "relTol": 0.1},
+                f'"(U|{"|".join(TURBULENCE_FIELDS)})"': {"solver": "smoothSolver", "smoother": "symGaussSeidel",
+                                                           "tolerance": 1e-8, "relTol": 0.1},
             },
             "SIMPLE": {"nNonOrthogonalCorrectors": 0, "consistent": simple["consistent"]},
             "relaxationFactors": {"fields": {"p": simple["p"]},
-                                  "equations": {"U": 0.7, "k": 0.6, "omega": 0.6, "epsilon": 0.6}},
+                                  "equations": {"U": 0.7, **{field: 0.6 for field in TURBULENCE_FIELDS}}},
         },
     )
 

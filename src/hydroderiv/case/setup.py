@@ -198,25 +198,44 @@ def _write_physics(case: Path, frame: FrameSetup, s: CaseSettings) -> None:
     )
 
 
-def _transported_turbulence(dimensions: str, value: float, wall_function: str) -> dict:
-    """k, omega or epsilon: the free-stream value where the far field flows in, a wall function on the body."""
+# Each transported turbulence field: its dimensions and its condition on the body. k, omega and epsilon
+# take wall functions; Spalart-Allmaras' nuTilda is zero at a wall at any y+ (the wall law is nut's).
+_TURBULENCE_FIELDS = {
+    "k": ("[0 2 -2 0 0 0 0]", "kqRWallFunction"),
+    "omega": ("[0 0 -1 0 0 0 0]", "omegaWallFunction"),
+    "epsilon": ("[0 2 -3 0 0 0 0]", "epsilonWallFunction"),
+    "nuTilda": ("[0 2 -1 0 0 0 0]", "fixedValue"),
+}
+
+
+def _transported_turbulence(field: str, value: float) -> dict:
+    """A transported turbulence field: the free-stream value where the far field flows in, its wall
+    condition on the body."""
+    dimensions, wall = _TURBULENCE_FIELDS[field]
     return {
         "class": "volScalarField",
         "dimensions": dimensions,
         "internal": value,
         "farfield": {"type": "inletOutlet", "inletValue": value, "value": value},
-        "wall": {"type": wall_function, "value": value},
+        "wall": {"type": wall, "value": 0.0 if field == "nuTilda" else value},
     }
+
+
+def _freestream_turbulence(field: str, speed: float, s: CaseSettings) -> float:
+    if field == "k":
+        return s.turbulence.k(speed)
+    if field == "nuTilda":
+        return s.turbulence.nu_tilda(s.fluid.nu)
+    return getattr(s.turbulence, field)(speed, s.fluid.nu)  # omega or epsilon
 
 
 def _fields(condition: Condition, frame: FrameSetup, s: CaseSettings) -> dict[str, dict]:
     # Field files: foamlib writes a plain value of a field entry as 'uniform <value>'.
     inflow = _vector(frame.farfield_velocity)
-    k = s.turbulence.k(condition.speed)
-    scale_variable = TURBULENCE_MODELS[s.turbulence_model]  # omega or epsilon
-    scale = getattr(s.turbulence, scale_variable)(condition.speed, s.fluid.nu)
-    scale_field = {"omega": ("[0 0 -1 0 0 0 0]", "omegaWallFunction"),
-                   "epsilon": ("[0 2 -3 0 0 0 0]", "epsilonWallFunction")}[scale_variable]
+    transported = TURBULENCE_MODELS[s.turbulence_model]
+    # nut's wall law from k for the k models; Spalding's single law from the velocity, valid at any y+, for
+    # Spalart-Allmaras, which has no k
+    nut_wall = "nutkWallFunction" if "k" in transported else "nutUSpaldingWallFunction"
     if frame.whole_domain_rotates:
         # Fluid at rest far away: an open boundary at zero total pressure that lets the body's displacement
         # flow in and out. (freestreamVelocity divides by the free-stream speed, which is zero here.)
@@ -240,14 +259,13 @@ def _fields(condition: Condition, frame: FrameSetup, s: CaseSettings) -> dict[st
             "farfield": farfield_p,
             "wall": {"type": "zeroGradient"},
         },
-        "k": _transported_turbulence("[0 2 -2 0 0 0 0]", k, "kqRWallFunction"),
-        scale_variable: _transported_turbulence(scale_field[0], scale, scale_field[1]),
+        **{field: _transported_turbulence(field, _freestream_turbulence(field, condition.speed, s)) for field in transported},
         "nut": {
             "class": "volScalarField",
             "dimensions": "[0 2 -1 0 0 0 0]",
             "internal": 0.0,
             "farfield": {"type": "calculated", "value": 0.0},
-            "wall": {"type": "nutkWallFunction", "value": 0.0},
+            "wall": {"type": nut_wall, "value": 0.0},
         },
     }
 

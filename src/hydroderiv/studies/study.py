@@ -9,7 +9,7 @@ Example::
     n_procs = 2
     work = "runs/aff8-coarse" # optional; default: runs/<file stem>
     method = "hybrid"         # optional: "hybrid" (default) or "classic" (whole domain rotates, for verification)
-    turbulence_model = "kOmegaSST"  # optional: or "ShihQuadraticKE", "realizableKE" (case/fluid.py)
+    turbulence_model = "kOmegaSST"  # optional: or "ShihQuadraticKE", "realizableKE", "SpalartAllmaras" (case/fluid.py)
     limit_pressure_gradient = false  # optional: true, or "start" (case/numerics.py)
     limit_velocity_gradient = "everywhere"  # optional: or "convection", "nowhere" (case/numerics.py)
     pressure_velocity_coupling = "SIMPLE"  # optional: or "SIMPLEC", for walls resolved to y+ ~ 1 (case/numerics.py)
