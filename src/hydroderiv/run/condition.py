@@ -51,8 +51,10 @@ def _yplus_summary(case: Path) -> dict:
     return out
 
 
-# The record keys _wall_reports fills, each with the OpenFOAM field (and function object) it reads.
+# The record keys _wall_reports fills, each with the OpenFOAM field it reads; those in FUNCTION_OBJECT_FIELDS
+# are written by a function object of the same name, which can make them again from a saved solution.
 WALL_REPORTS = {"reversed_flow": WALL_SHEAR, "yplus_along_x": YPLUS_FIELD, "loads_along_x": PRESSURE_FIELD}
+FUNCTION_OBJECT_FIELDS = (WALL_SHEAR, YPLUS_FIELD)
 
 
 def _wall_reports(case: Path, condition: Condition, settings: CaseSettings) -> dict[str, dict]:
@@ -108,7 +110,7 @@ def add_wall_reports(case: str | Path, settings: CaseSettings, record: dict | No
     if missing:
         latest = latest_time_dir(case)
         for field in (WALL_REPORTS[key] for key in missing):
-            if latest is not None and settings.components and not (latest / field).is_file():
+            if field in FUNCTION_OBJECT_FIELDS and latest is not None and settings.components and not (latest / field).is_file():
                 run_application(case, ["simpleFoam", "-postProcess", "-func", field, "-latestTime"],
                                 log_name=field)
         made = _wall_reports(case, Condition(**record["condition"]), settings)
