@@ -171,14 +171,14 @@ def test_loads_along_x_add_the_pressure_of_the_next_cell_and_the_wall_shear_per_
     faces, owners = patch_faces(mesh, ["hull"]), patch_owners(mesh, ["hull"])
     assert owners["hull"].tolist() == [0, 1, 2, 3]
     scales = PrimeScales(rho=2.0, speed=1.0, length=1.0)  # 0.5 rho U^2 L^2 = 1 N
-    aft, fore = loads_along_x(time_dir, faces, owners, "hull", scales, bins=2)
+    aft, fore = loads_along_x(time_dir, faces, owners, scales, bins=2)["hull"]
     # each face: rho (p S_f - |S_f| tau_w) = 2 (-0.5, -p - 0.2, -0.1): the overpressure pushes towards -y,
     # the shear stress on the fluid is the opposite of the fluid's pull on the wall
     assert (aft["x_from"], aft["x_to"], fore["x_to"]) == (0.5, 2.0, 3.5)
     assert aft == {**aft, "faces": 2, "Y": pytest.approx(-10.8), "Z": pytest.approx(-0.4)}
     assert fore == {**fore, "faces": 2, "Y": pytest.approx(3.2), "Z": pytest.approx(-0.4)}
     # twice the speed: a quarter of the coefficients
-    faster = loads_along_x(time_dir, faces, owners, "hull", PrimeScales(2.0, 2.0, 1.0), bins=2)
+    faster = loads_along_x(time_dir, faces, owners, PrimeScales(2.0, 2.0, 1.0), bins=2)["hull"]
     assert [s["Y"] for s in faster] == pytest.approx([-2.7, 0.8])
 
 
@@ -186,13 +186,13 @@ def test_loads_along_x_take_a_uniform_pressure_and_name_what_is_missing(tmp_path
     mesh = strip_of_faces(tmp_path, [0, 1, 2])
     faces, owners = patch_faces(mesh, ["hull"]), patch_owners(mesh, ["hull"])
     with pytest.raises(HydroderivError, match="p is missing: the run wrote no pressure"):
-        loads_along_x(tmp_path, faces, owners, "hull", PrimeScales(2.0, 1.0, 1.0))
+        loads_along_x(tmp_path, faces, owners, PrimeScales(2.0, 1.0, 1.0))
     time_dir = _pressure_and_shear(tmp_path, "uniform 1", "0 0 0")
-    (whole,) = loads_along_x(time_dir, faces, owners, "hull", PrimeScales(2.0, 1.0, 1.0), bins=1)
+    (whole,) = loads_along_x(time_dir, faces, owners, PrimeScales(2.0, 1.0, 1.0), bins=1)["hull"]
     assert whole == {**whole, "faces": 2, "Y": pytest.approx(-4.0), "Z": 0.0}
     with pytest.raises(HydroderivError, match="1 owner cells for 2 faces"):
-        loads_along_x(time_dir, faces, {"hull": owners["hull"][:1]}, "hull", PrimeScales(2.0, 1.0, 1.0))
+        loads_along_x(time_dir, faces, {"hull": owners["hull"][:1]}, PrimeScales(2.0, 1.0, 1.0))
     shear = time_dir / "wallShearStress"
     shear.write_text(shear.read_text().replace("uniform (0 0 0); }", "nonuniform List<vector> 3((0 0 0) (0 0 0) (0 0 0)); }"))
     with pytest.raises(HydroderivError, match="3 values on hull, but the mesh has 2 faces"):
-        loads_along_x(time_dir, faces, owners, "hull", PrimeScales(2.0, 1.0, 1.0))
+        loads_along_x(time_dir, faces, owners, PrimeScales(2.0, 1.0, 1.0))

@@ -110,33 +110,36 @@ def yplus_along_x(time_dir: str | Path, faces: WallFaces, patch: str, bins: int 
     return out
 
 
-def loads_along_x(time_dir: str | Path, faces: WallFaces, owners: dict[str, np.ndarray], patch: str,
-                  scales: PrimeScales, bins: int = 8) -> list[dict]:
-    """Side and vertical force (Y', Z') on one patch of ``faces`` in ``bins`` equal slices of its length along
-    x, aft to fore.
+def loads_along_x(time_dir: str | Path, faces: WallFaces, owners: dict[str, np.ndarray], scales: PrimeScales,
+                  bins: int = 8) -> dict[str, list[dict]]:
+    """Per patch of ``faces``: its side and vertical force (Y', Z') in ``bins`` equal slices of its length
+    along x, aft to fore.
 
     Each face carries rho (p S_f - |S_f| tau_w), the sum OpenFOAM's forces function object makes, so the
     slices add up to the part's recorded force: p is that of the cell next to the face (``owners``, see
     mesh.quality.patch_owners; the wall's zero-gradient condition), S_f points out of the fluid, and the wall
-    shear stress tau_w is the stress on the fluid. Each slice: its x range (m), faces, Y' and Z'.
+    shear stress tau_w is the stress on the fluid. Each slice: its x range (m), faces, Y' and Z'. The fields
+    are read once for all patches (the pressure is the whole internal field).
     """
-    pressure = _field_file(time_dir, PRESSURE_FIELD, "pressure").internal_field
-    centres, areas = faces[patch]
-    cells = owners[patch]
-    if len(cells) != len(areas):
-        raise HydroderivError(f"{patch}: {len(cells)} owner cells for {len(areas)} faces")
-    p = np.asarray(pressure, dtype=float)
-    p = p[cells] if p.ndim else np.full(len(cells), float(p))
-    shear = _patch_values(_field_file(time_dir, FIELD, "wall shear stress"), patch, len(areas), 3)
-    force = scales.rho * (p[:, None] * areas - np.linalg.norm(areas, axis=1)[:, None] * shear) / scales.force
-    edges, slot = slices_along_x(centres[:, 0], bins)
-    out = []
-    for k in range(bins):
-        inside = slot == k
-        if inside.any():
-            y, z = force[inside, 1].sum(), force[inside, 2].sum()
-            out.append({"x_from": round(float(edges[k]), 3), "x_to": round(float(edges[k + 1]), 3),
-                        "faces": int(inside.sum()), "Y": float(f"{y:.4g}"), "Z": float(f"{z:.4g}")})
+    pressure = np.asarray(_field_file(time_dir, PRESSURE_FIELD, "pressure").internal_field, dtype=float)
+    shear_file = _field_file(time_dir, FIELD, "wall shear stress")
+    out = {}
+    for patch, (centres, areas) in faces.items():
+        cells = owners[patch]
+        if len(cells) != len(areas):
+            raise HydroderivError(f"{patch}: {len(cells)} owner cells for {len(areas)} faces")
+        p = pressure[cells] if pressure.ndim else np.full(len(cells), float(pressure))
+        shear = _patch_values(shear_file, patch, len(areas), 3)
+        force = scales.rho * (p[:, None] * areas - np.linalg.norm(areas, axis=1)[:, None] * shear) / scales.force
+        edges, slot = slices_along_x(centres[:, 0], bins)
+        slices = []
+        for k in range(bins):
+            inside = slot == k
+            if inside.any():
+                y, z = force[inside, 1].sum(), force[inside, 2].sum()
+                slices.append({"x_from": round(float(edges[k]), 3), "x_to": round(float(edges[k + 1]), 3),
+                               "faces": int(inside.sum()), "Y": float(f"{y:.4g}"), "Z": float(f"{z:.4g}")})
+        out[patch] = slices
     return out
 
 

@@ -91,7 +91,7 @@ def _wall_reports(case: Path, condition: Condition, settings: CaseSettings) -> d
 def _loads_along_x(case: Path, time_dir: Path, faces, condition: Condition, settings: CaseSettings) -> dict:
     owners = patch_owners(case / "constant/polyMesh", list(faces))
     scales = PrimeScales(settings.fluid.rho, condition.speed, settings.length)
-    return {part: loads_along_x(time_dir, faces, owners, part, scales) for part in faces}
+    return loads_along_x(time_dir, faces, owners, scales)
 
 
 def add_wall_reports(case: str | Path, settings: CaseSettings, record: dict | None = None) -> dict[str, dict]:
