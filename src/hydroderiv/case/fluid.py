@@ -46,6 +46,14 @@ class FreestreamTurbulence:
             chi -= residual / slope
         return chi * nu
 
+    def value(self, field: str, speed: float, nu: float) -> float:
+        """The free-stream value of the transported turbulence field ``field`` (k, omega, epsilon or nuTilda)."""
+        values = {"k": lambda: self.k(speed), "omega": lambda: self.omega(speed, nu),
+                  "epsilon": lambda: self.epsilon(speed, nu), "nuTilda": lambda: self.nu_tilda(nu)}
+        if field not in values:
+            raise ValueError(f"no free-stream value for the turbulence field {field!r}; known: {', '.join(values)}")
+        return values[field]()
+
 
 # RAS models on offer, each with the fields it transports. All work with wall functions (y+ about 50).
 # k-omega SST is the default (the seed paper's model). Shih's quadratic k-epsilon adds stresses quadratic in

@@ -221,14 +221,6 @@ def _transported_turbulence(field: str, value: float) -> dict:
     }
 
 
-def _freestream_turbulence(field: str, speed: float, s: CaseSettings) -> float:
-    if field == "k":
-        return s.turbulence.k(speed)
-    if field == "nuTilda":
-        return s.turbulence.nu_tilda(s.fluid.nu)
-    return getattr(s.turbulence, field)(speed, s.fluid.nu)  # omega or epsilon
-
-
 def _fields(condition: Condition, frame: FrameSetup, s: CaseSettings) -> dict[str, dict]:
     # Field files: foamlib writes a plain value of a field entry as 'uniform <value>'.
     inflow = _vector(frame.farfield_velocity)
@@ -259,7 +251,7 @@ def _fields(condition: Condition, frame: FrameSetup, s: CaseSettings) -> dict[st
             "farfield": farfield_p,
             "wall": {"type": "zeroGradient"},
         },
-        **{field: _transported_turbulence(field, _freestream_turbulence(field, condition.speed, s)) for field in transported},
+        **{field: _transported_turbulence(field, s.turbulence.value(field, condition.speed, s.fluid.nu)) for field in transported},
         "nut": {
             "class": "volScalarField",
             "dimensions": "[0 2 -1 0 0 0 0]",
