@@ -257,7 +257,7 @@ def _derivatives(args: argparse.Namespace) -> int:
         raise HydroderivError(f"no sweep of {study.path} has enough finished conditions for a derivative yet")
     body = study.body or str(study.body_dir)
     # The set-up goes into every title and the JSON: tables of one body and mesh differ by model and method.
-    setup = study.turbulence_model + (", classic rotating domain" if study.method == "classic" else "")
+    setup = study.solver.turbulence_model + (", classic rotating domain" if study.method == "classic" else "")
     table = Table(title=f"derivatives, {body} on the {study.level} mesh, {setup} "
                         "(prime units, L-based)")
     for column in ("derivative", "fit", "std. error", "iterative", "single-point", "single-point by magnitude", "points",
@@ -274,10 +274,7 @@ def _derivatives(args: argparse.Namespace) -> int:
     console.print(table)
     out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": body,
-            "turbulence_model": study.turbulence_model, "method": study.method,
-            "limited_pressure_gradient": study.limit_pressure_gradient,
-            "limited_velocity_gradient": study.limit_velocity_gradient,
-            "pressure_velocity_coupling": study.pressure_velocity_coupling, "conditions": len(results),
+            **study.solver.record(), "method": study.method, "conditions": len(results),
             "fit": {"nonlinear": study.nonlinear, "offset": study.fit_offset,
                     **({} if study.max_angle_deg is None else {"max_angle_deg": study.max_angle_deg})}}
     paths = write_table(rows, out, meta, results)

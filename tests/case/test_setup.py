@@ -3,6 +3,7 @@
 import pytest
 
 from hydroderiv.case.setup import write_schedule
+from hydroderiv.case.solver_options import SolverOptions
 
 
 @pytest.mark.parametrize("max_iterations", [1, 60, 250, 400, 600, 999, 3000])
@@ -45,7 +46,7 @@ def test_a_limited_pressure_gradient_survives_the_switch_to_second_order(tmp_pat
     mesh = tmp_path / "mesh"
     (mesh / "constant/polyMesh").mkdir(parents=True)
     for limited in (True, False):
-        settings = CaseSettings(length=4.261, components=("hull",), limit_pressure_gradient=limited)
+        settings = CaseSettings(length=4.261, components=("hull",), solver=SolverOptions(limit_pressure_gradient=limited))
         case = write_condition_case(tmp_path / str(limited), mesh, Condition(speed=3.344), settings)  # a cold start
         assert not has_second_order_convection(case)
         switch_to_second_order_convection(case, settings.limiters_after_start())  # as the run loop does
@@ -64,7 +65,7 @@ def test_a_pressure_gradient_limited_at_the_start_is_limited_in_a_cold_start_onl
     from hydroderiv.case.setup import CaseSettings, write_condition_case
     from hydroderiv.errors import ConfigurationError
 
-    settings = CaseSettings(length=4.261, components=("hull",), limit_pressure_gradient_at_start=True)
+    settings = CaseSettings(length=4.261, components=("hull",), solver=SolverOptions(limit_pressure_gradient_at_start=True))
     mesh = tmp_path / "mesh"
     (mesh / "constant/polyMesh").mkdir(parents=True)
     cold = write_condition_case(tmp_path / "cold", mesh, Condition(speed=3.344), settings)
@@ -77,7 +78,7 @@ def test_a_pressure_gradient_limited_at_the_start_is_limited_in_a_cold_start_onl
     assert not settings.limits_pressure_gradient_only_at_start(tmp_path)
     assert settings.limits_pressure_gradient_only_at_start(None)
     with pytest.raises(ConfigurationError, match="either always or at the start"):
-        CaseSettings(length=4.261, components=("hull",), limit_pressure_gradient=True, limit_pressure_gradient_at_start=True)
+        SolverOptions(limit_pressure_gradient=True, limit_pressure_gradient_at_start=True)
 
 
 def test_a_velocity_gradient_limited_for_convection_only_leaves_the_strain_rate_unlimited(tmp_path):
@@ -99,7 +100,7 @@ def test_a_velocity_gradient_limited_for_convection_only_leaves_the_strain_rate_
     mesh = tmp_path / "mesh"
     (mesh / "constant/polyMesh").mkdir(parents=True)
     for where in ("everywhere", "convection", "nowhere"):
-        settings = CaseSettings(length=4.261, components=("hull",), limit_velocity_gradient=where)
+        settings = CaseSettings(length=4.261, components=("hull",), solver=SolverOptions(limit_velocity_gradient=where))
         case = write_condition_case(tmp_path / where, mesh, Condition(speed=3.344), settings)
         switch_to_second_order_convection(case, settings.limiters_after_start())
         assert has_second_order_convection(case)
@@ -118,7 +119,7 @@ def test_a_velocity_gradient_limited_for_convection_only_leaves_the_strain_rate_
         # the turbulence fields' reconstruction is limited either way
         assert words(div["div(phi,k)"]).endswith("linearUpwind grad(k)") and words(grad["grad(k)"]) == LIMITED_GRADIENT
     with pytest.raises(ConfigurationError, match="limit_velocity_gradient = 'sometimes'"):
-        CaseSettings(length=4.261, components=("hull",), limit_velocity_gradient="sometimes")
+        SolverOptions(limit_velocity_gradient="sometimes")
 
 
 def test_simplec_relaxes_the_pressure_less_and_keeps_its_coupling_through_the_switch_to_second_order(tmp_path):
@@ -134,7 +135,8 @@ def test_simplec_relaxes_the_pressure_less_and_keeps_its_coupling_through_the_sw
     mesh = tmp_path / "mesh"
     (mesh / "constant/polyMesh").mkdir(parents=True)
     for coupling, consistent, p_relax in (("SIMPLE", False, 0.3), ("SIMPLEC", True, 0.9)):
-        settings = CaseSettings(length=4.261, components=("hull",), pressure_velocity_coupling=coupling)
+        settings = CaseSettings(length=4.261, components=("hull",),
+                                solver=SolverOptions(pressure_velocity_coupling=coupling))
         case = write_condition_case(tmp_path / coupling, mesh, Condition(speed=3.344), settings)  # a cold start
         switch_to_second_order_convection(case, settings.limiters_after_start())
         assert has_second_order_convection(case)
@@ -142,7 +144,7 @@ def test_simplec_relaxes_the_pressure_less_and_keeps_its_coupling_through_the_sw
         assert solution["SIMPLE"]["consistent"] is consistent
         assert solution["relaxationFactors"]["fields"]["p"] == pytest.approx(p_relax)
     with pytest.raises(ConfigurationError, match="pressure_velocity_coupling = 'PISO' must be one of 'SIMPLE', 'SIMPLEC'"):
-        CaseSettings(length=4.261, components=("hull",), pressure_velocity_coupling="PISO")
+        SolverOptions(pressure_velocity_coupling="PISO")
 
 
 def test_a_k_epsilon_model_gets_epsilon_from_the_same_free_stream_and_its_own_wall_function(tmp_path):
@@ -157,7 +159,7 @@ def test_a_k_epsilon_model_gets_epsilon_from_the_same_free_stream_and_its_own_wa
     condition, nu = Condition(speed=3.344), 0.001053 / 998.55
     cases = {}
     for model in ("kOmegaSST", "ShihQuadraticKE"):
-        settings = CaseSettings(length=4.261, components=("hull",), turbulence_model=model)
+        settings = CaseSettings(length=4.261, components=("hull",), solver=SolverOptions(turbulence_model=model))
         cases[model] = write_condition_case(tmp_path / model, mesh, condition, settings)
         with FoamFile(cases[model] / "constant/turbulenceProperties") as f:
             assert f["RAS"]["RASModel"] == model
@@ -182,7 +184,8 @@ def test_spalart_allmaras_gets_the_same_free_stream_eddy_viscosity_no_k_and_spal
     mesh = tmp_path / "mesh"
     (mesh / "constant/polyMesh").mkdir(parents=True)
     nu = 0.001053 / 998.55
-    settings = CaseSettings(length=4.261, components=("hull",), turbulence_model="SpalartAllmaras")
+    settings = CaseSettings(length=4.261, components=("hull",),
+                            solver=SolverOptions(turbulence_model="SpalartAllmaras"))
     case = write_condition_case(tmp_path / "sa", mesh, Condition(speed=3.344), settings)
     assert sorted(p.name for p in (case / "0").iterdir()) == ["U", "nuTilda", "nut", "p"]  # no k, omega, epsilon
     with FoamFile(case / "0/nuTilda") as f:
@@ -200,8 +203,7 @@ def test_spalart_allmaras_gets_the_same_free_stream_eddy_viscosity_no_k_and_spal
 
 
 def test_an_unknown_turbulence_model_is_named():
-    from hydroderiv.case.setup import CaseSettings
     from hydroderiv.errors import ConfigurationError
 
     with pytest.raises(ConfigurationError, match="unknown turbulence model 'kEpsilonQCR'"):
-        CaseSettings(length=4.261, components=(), turbulence_model="kEpsilonQCR")
+        SolverOptions(turbulence_model="kEpsilonQCR")

@@ -6,6 +6,7 @@ import pytest
 
 from hydroderiv.case import Condition
 from hydroderiv.case.setup import CaseSettings
+from hydroderiv.case.solver_options import SolverOptions
 from hydroderiv.run.condition import RESULT_FILE, run_condition
 from hydroderiv.run.monitor import ConvergenceCriterion
 
@@ -18,7 +19,7 @@ def straight(coarse_bare_hull, tmp_path_factory):
     case = tmp_path_factory.mktemp("run") / "straight"
     # the pressure gradient limited during the first-order start only: the converged run is the unlimited one
     settings = CaseSettings(length=4.261, components=("hull",), n_procs=2, max_iterations=600,
-                            limit_pressure_gradient_at_start=True)
+                            solver=SolverOptions(limit_pressure_gradient_at_start=True))
     progress = []
     record = run_condition(case, mesh_case, Condition(speed=3.344), settings, ConvergenceCriterion(min_iterations=120),
                            on_progress=progress.append)
@@ -150,7 +151,7 @@ def straight_quadratic(coarse_bare_hull, tmp_path_factory):
     mesh_case, _ = coarse_bare_hull
     case = tmp_path_factory.mktemp("run") / "straight-shih"
     settings = CaseSettings(length=4.261, components=("hull",), n_procs=2, max_iterations=600,
-                            turbulence_model="ShihQuadraticKE")
+                            solver=SolverOptions(turbulence_model="ShihQuadraticKE"))
     return run_condition(case, mesh_case, Condition(speed=3.344), settings, ConvergenceCriterion(min_iterations=120))
 
 

@@ -183,8 +183,8 @@ def test_a_solver_setting_keeps_its_conditions_apart_on_the_same_mesh(tmp_path, 
     assert other.workspace.mesh_dir == plain.workspace.mesh_dir  # one mesh
     assert other.case_dir(straight).parent.name == folder
     assert plain.case_dir(straight).parent.name == "conditions"
-    assert getattr(other.case_settings(other.workspace.body("AFF-1")), setting) == value
-    assert getattr(plain.case_settings(plain.workspace.body("AFF-1")), setting) == default
+    assert getattr(other.case_settings(other.workspace.body("AFF-1")).solver, setting) == value
+    assert getattr(plain.case_settings(plain.workspace.body("AFF-1")).solver, setting) == default
 
 
 def test_a_pressure_gradient_limited_at_the_start_shares_the_unlimited_conditions(tmp_path):
@@ -194,4 +194,4 @@ def test_a_pressure_gradient_limited_at_the_start_shares_the_unlimited_condition
     straight = Condition(plain.speed)
     assert at_start.case_dir(straight) == plain.case_dir(straight)
     settings = at_start.case_settings(at_start.workspace.body("AFF-1"))
-    assert settings.limit_pressure_gradient_at_start and not settings.limit_pressure_gradient
+    assert settings.solver.limit_pressure_gradient_at_start and not settings.solver.limit_pressure_gradient

@@ -22,10 +22,10 @@ from ..forces.surface_flow import FIELD as WALL_SHEAR
 from ..mesh.snappy import FARFIELD, ROTATING_ZONE, WALL_GROUP
 from ..run.solver import STOP_FILE, TOTAL_FORCES, component_function_name
 from .conditions import Condition
-from .fluid import DEFAULT_TURBULENCE_MODEL, TURBULENCE_MODELS, Fluid, FreestreamTurbulence, check_turbulence_model
+from .fluid import TURBULENCE_MODELS, Fluid, FreestreamTurbulence
 from .frames import FRAME_METHODS, FrameSetup, frame_setup
-from .numerics import (GradientLimiters, check_pressure_velocity_coupling, check_velocity_gradient_limiting,
-                       write_numerics)
+from .numerics import GradientLimiters, write_numerics
+from .solver_options import SolverOptions
 from .warm_start import take_internal_field
 
 COMPONENT_INTERVAL = 10  # iterations between per-component force samples
@@ -49,13 +49,7 @@ class CaseSettings:
     # first-order iterations the same mesh and condition ran on with k below 0.2 m2/s2.
     first_order_start: int = 80
     method: str = "hybrid"  # frame method, see hydroderiv.case.frames
-    turbulence_model: str = DEFAULT_TURBULENCE_MODEL  # see hydroderiv.case.fluid.TURBULENCE_MODELS
-    limit_pressure_gradient: bool = False  # see hydroderiv.case.numerics.LIMITED_PRESSURE_GRADIENT
-    # Limit it only during a cold start's first-order iterations (see the same place); a warm start and
-    # everything after the switch to second order run unlimited.
-    limit_pressure_gradient_at_start: bool = False
-    limit_velocity_gradient: str = "everywhere"  # see hydroderiv.case.numerics.VELOCITY_GRADIENT_LIMITING
-    pressure_velocity_coupling: str = "SIMPLE"  # see hydroderiv.case.numerics.PRESSURE_VELOCITY_COUPLINGS
+    solver: SolverOptions = field(default_factory=SolverOptions)  # turbulence model and numerics
 
     def second_order_from(self, warm_start: Path | None) -> int | None:
         """The iteration at which second-order convection starts, or None if the case starts with it."""
@@ -65,25 +59,20 @@ class CaseSettings:
 
     def limits_pressure_gradient_only_at_start(self, warm_start: Path | None) -> bool:
         """Whether the case starts with the pressure gradient limited until the switch to second order."""
-        return self.limit_pressure_gradient_at_start and self.second_order_from(warm_start) is not None
+        return self.solver.limit_pressure_gradient_at_start and self.second_order_from(warm_start) is not None
 
     def limiters_at_start(self, warm_start: Path | None) -> GradientLimiters:
         """The gradient limiters a case starts with."""
-        pressure = self.limit_pressure_gradient or self.limits_pressure_gradient_only_at_start(warm_start)
-        return GradientLimiters(pressure=pressure, velocity=self.limit_velocity_gradient)
+        pressure = self.solver.limit_pressure_gradient or self.limits_pressure_gradient_only_at_start(warm_start)
+        return GradientLimiters(pressure=pressure, velocity=self.solver.limit_velocity_gradient)
 
     def limiters_after_start(self) -> GradientLimiters:
         """The gradient limiters from the switch to second-order convection on (and of a warm start)."""
-        return GradientLimiters(pressure=self.limit_pressure_gradient, velocity=self.limit_velocity_gradient)
+        return GradientLimiters(pressure=self.solver.limit_pressure_gradient, velocity=self.solver.limit_velocity_gradient)
 
     def __post_init__(self):
-        if self.limit_pressure_gradient and self.limit_pressure_gradient_at_start:
-            raise ConfigurationError("limit the pressure gradient either always or at the start, not both")
         if self.method not in FRAME_METHODS:
             raise ConfigurationError(f"unknown frame method {self.method!r}; choose one of {', '.join(FRAME_METHODS)}")
-        check_turbulence_model(self.turbulence_model)
-        check_velocity_gradient_limiting(self.limit_velocity_gradient)
-        check_pressure_velocity_coupling(self.pressure_velocity_coupling)
 
 
 def _vector(v) -> list[float]:
@@ -163,7 +152,7 @@ def _write_physics(case: Path, frame: FrameSetup, s: CaseSettings) -> None:
     write_foam_dict(case / "constant/transportProperties", {"transportModel": "Newtonian", "nu": s.fluid.nu})
     write_foam_dict(
         case / "constant/turbulenceProperties",
-        {"simulationType": "RAS", "RAS": {"RASModel": s.turbulence_model, "turbulence": True, "printCoeffs": True}},
+        {"simulationType": "RAS", "RAS": {"RASModel": s.solver.turbulence_model, "turbulence": True, "printCoeffs": True}},
     )
     magnitude = float(np.linalg.norm(frame.omega))
     # hybrid: the sphere rotates about B and the far field outside it is inertial; classic: every cell
@@ -224,7 +213,7 @@ def _transported_turbulence(field: str, value: float) -> dict:
 def _fields(condition: Condition, frame: FrameSetup, s: CaseSettings) -> dict[str, dict]:
     # Field files: foamlib writes a plain value of a field entry as 'uniform <value>'.
     inflow = _vector(frame.farfield_velocity)
-    transported = TURBULENCE_MODELS[s.turbulence_model]
+    transported = TURBULENCE_MODELS[s.solver.turbulence_model]
     # nut's wall law from k for the k models; Spalding's single law from the velocity, valid at any y+, for
     # Spalart-Allmaras, which has no k
     nut_wall = "nutkWallFunction" if "k" in transported else "nutUSpaldingWallFunction"
@@ -345,7 +334,7 @@ def write_condition_case(
     _link_mesh(case, mesh_case, whole_domain_zone=frame.whole_domain_rotates)
     _write_control(case, settings)
     write_numerics(case, settings.second_order and settings.second_order_from(warm_start) is None,
-                   limiters=settings.limiters_at_start(warm_start), coupling=settings.pressure_velocity_coupling)
+                   limiters=settings.limiters_at_start(warm_start), coupling=settings.solver.pressure_velocity_coupling)
     write_decomposition(case, settings.n_procs)
     _write_physics(case, frame, settings)
     n_cells = mesh_cell_count(mesh_case / "constant/polyMesh") if warm_start is not None else None

@@ -177,11 +177,9 @@ def run_condition(
         "warm_start": str(warm_start) if warm_start else None,
         # None: second-order convection from the first iteration (or switched before an interruption)
         "second_order_from": second_order_from,
-        "limited_pressure_gradient": settings.limit_pressure_gradient,
+        **settings.solver.record(),
         # limited during the first-order start only, so the converged solution is the unlimited one
         "limited_pressure_gradient_at_start": settings.limits_pressure_gradient_only_at_start(warm_start),
-        "limited_velocity_gradient": settings.limit_velocity_gradient,  # everywhere, or in convection only
-        "pressure_velocity_coupling": settings.pressure_velocity_coupling,
         "n_procs": n,
         "coefficients": dict(zip(COEFFICIENT_NAMES, map(float, result.coefficients))),
         "force_N": (result.coefficients[:3] * force_scale).tolist(),

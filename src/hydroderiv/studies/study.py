@@ -52,10 +52,9 @@ import numpy as np
 from .._io import atomic_write_text
 from ..case import KNOT, Condition
 from ..case.conditions import SWEEP_KEYS
-from ..case.fluid import DEFAULT_TURBULENCE_MODEL, check_turbulence_model
 from ..case.frames import FRAME_METHODS
-from ..case.numerics import check_pressure_velocity_coupling, check_velocity_gradient_limiting
 from ..case.setup import CaseSettings, latest_time_dir
+from ..case.solver_options import STUDY_TABLE_KEYS, SolverOptions
 from ..derivatives.fit import NONLINEAR_TERMS
 from ..errors import ConfigurationError, HydroderivError
 from ..forces.surface_flow import describe_reversed_flow, describe_yplus_along_x
@@ -67,8 +66,7 @@ from ..run.solver import Progress
 from .workspace import Workspace, is_suboff
 
 FAILED_FILE = "failed.json"
-STUDY_KEYS = {"body", "body_dir", "level", "speed", "speed_knots", "n_procs", "work", "method", "turbulence_model",
-              "limit_pressure_gradient", "limit_velocity_gradient", "pressure_velocity_coupling"}
+STUDY_KEYS = {"body", "body_dir", "level", "speed", "speed_knots", "n_procs", "work", "method", *STUDY_TABLE_KEYS}
 
 
 def running_marker(case: Path) -> Path:
@@ -89,17 +87,11 @@ class Study:
     conditions: tuple[Condition, ...]
     criterion: ConvergenceCriterion = field(default_factory=ConvergenceCriterion)
     method: str = "hybrid"
-    turbulence_model: str = DEFAULT_TURBULENCE_MODEL
+    solver: SolverOptions = field(default_factory=SolverOptions)  # turbulence model and numerics
     nonlinear: str = "abs"  # the derivative fit's nonlinear term
     fit_offset: bool = True
     max_angle_deg: float | None = None  # static fits use the points within this angle (None: all)
     mesh_options: tuple[tuple[str, float | bool], ...] = ()  # the [mesh] table: MeshDesign fields, as (name, value)
-    limit_pressure_gradient: bool = False  # for meshes that resolve the wall, see case/numerics.py
-    # ... or only while a cold start runs first order ("start" in the study file); such runs converge to
-    # the unlimited solution and share the unlimited conditions
-    limit_pressure_gradient_at_start: bool = False
-    limit_velocity_gradient: str = "everywhere"  # or "convection", see case/numerics.py
-    pressure_velocity_coupling: str = "SIMPLE"  # or "SIMPLEC", see case/numerics.py
 
     @classmethod
     def load(cls, path: str | Path) -> Study:
@@ -139,10 +131,7 @@ class Study:
         bad_keys = set(head) - STUDY_KEYS
         if bad_keys:
             raise ConfigurationError(f"{path}: unknown [study] key(s) {', '.join(sorted(bad_keys))}")
-        limit_pressure_gradient = head.get("limit_pressure_gradient", False)
-        if not isinstance(limit_pressure_gradient, bool) and limit_pressure_gradient != "start":
-            raise ConfigurationError(f"{path}: [study] limit_pressure_gradient = {limit_pressure_gradient!r} must be "
-                                     "true, false or \"start\" (limited during a cold start's first-order iterations only)")
+        solver = SolverOptions.from_study_table(head, str(path))
         allowed = {f.name for f in fields(ConvergenceCriterion)}
         conv = data.get("convergence", {})
         if set(conv) - allowed:
@@ -168,33 +157,21 @@ class Study:
             conditions=unique,
             criterion=ConvergenceCriterion(**conv),
             method=method,
-            turbulence_model=check_turbulence_model(head.get("turbulence_model", DEFAULT_TURBULENCE_MODEL), str(path)),
+            solver=solver,
             nonlinear=nonlinear,
             fit_offset=bool(fit.get("offset", True)),
             max_angle_deg=None if max_angle is None else float(max_angle),
             mesh_options=tuple(sorted(mesh_options(data.get("mesh", {}), str(path)).items())),
-            limit_pressure_gradient=limit_pressure_gradient is True,
-            limit_pressure_gradient_at_start=limit_pressure_gradient == "start",
-            limit_velocity_gradient=check_velocity_gradient_limiting(
-                head.get("limit_velocity_gradient", "everywhere"), str(path)),
-            pressure_velocity_coupling=check_pressure_velocity_coupling(
-                head.get("pressure_velocity_coupling", "SIMPLE"), str(path)),
         )
 
     @property
     def workspace(self) -> Workspace:
-        return Workspace(self.work, self.level, self.method, self.mesh_options, self.turbulence_model,
-                         self.limit_pressure_gradient, self.limit_velocity_gradient, self.pressure_velocity_coupling)
+        return Workspace(self.work, self.level, self.method, self.mesh_options, self.solver)
 
     def case_settings(self, body: Body) -> CaseSettings:
         """What every condition of this study needs besides the condition itself."""
         return CaseSettings(length=body.reference.length, components=body.component_names, n_procs=self.n_procs,
-                            max_iterations=self.criterion.max_iterations, method=self.method,
-                            turbulence_model=self.turbulence_model,
-                            limit_pressure_gradient=self.limit_pressure_gradient,
-                            limit_pressure_gradient_at_start=self.limit_pressure_gradient_at_start,
-                            limit_velocity_gradient=self.limit_velocity_gradient,
-                            pressure_velocity_coupling=self.pressure_velocity_coupling)
+                            max_iterations=self.criterion.max_iterations, method=self.method, solver=self.solver)
 
     def frame_method(self, condition: Condition) -> str:
         """The frame ``condition`` is solved in. Without rotation both methods are the same translation, so

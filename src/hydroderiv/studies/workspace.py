@@ -10,16 +10,17 @@
                                 conditions-classic-<model>/ for both
     <work>/conditions-...-limited-grad-p/  the same with the pressure gradient limited
     <work>/conditions-...-grad-U-limited-in-convection/  the same with the velocity gradient limited in the
-                                convection scheme only (case/numerics.py), -unlimited-grad-U/ not at all
+                                convection scheme only (case/numerics.py), -unlimited-grad-U/ not at all;
+                                -SIMPLEC/ with that coupling (case/solver_options.py names them all)
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Callable
 
-from ..case.fluid import DEFAULT_TURBULENCE_MODEL
+from ..case.solver_options import SolverOptions
 from ..geometry import Body, suboff_body
 from ..geometry.body import REFERENCE_FILE
 from ..geometry.suboff import CONFIGURATIONS
@@ -32,10 +33,7 @@ class Workspace:
     level: str
     method: str = "hybrid"
     mesh_options: tuple[tuple[str, float | bool], ...] = ()  # MeshDesign fields set by the user, as (name, value)
-    turbulence_model: str = DEFAULT_TURBULENCE_MODEL
-    limit_pressure_gradient: bool = False
-    limit_velocity_gradient: str = "everywhere"
-    pressure_velocity_coupling: str = "SIMPLE"
+    solver: SolverOptions = field(default_factory=SolverOptions)  # its choices name the conditions folder
 
     @property
     def geometry_dir(self) -> Path:
@@ -46,12 +44,7 @@ class Workspace:
         return self.root / f"mesh-{self.level}"
 
     def condition_dir(self, name: str) -> Path:
-        folder = "conditions" + (f"-{self.method}" if self.method != "hybrid" else "") + (
-            f"-{self.turbulence_model}" if self.turbulence_model != DEFAULT_TURBULENCE_MODEL else "") + (
-            "-limited-grad-p" if self.limit_pressure_gradient else "") + (
-            {"everywhere": "", "convection": "-grad-U-limited-in-convection",
-             "nowhere": "-unlimited-grad-U"}[self.limit_velocity_gradient]) + (
-            f"-{self.pressure_velocity_coupling}" if self.pressure_velocity_coupling != "SIMPLE" else "")
+        folder = "conditions" + (f"-{self.method}" if self.method != "hybrid" else "") + self.solver.folder_suffix
         return self.root / folder / name
 
     def body(self, config: str | None = None, body_dir: str | Path | None = None) -> Body:

@@ -1,0 +1,72 @@
+"""The user's choices of turbulence model and numerics, which every condition of a study shares.
+
+One object carries them from the study file's [study] table to the case set-up, the name of the folder the
+conditions are kept in, and the record of each result; a new choice is added here once.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+from ..errors import ConfigurationError
+from .fluid import DEFAULT_TURBULENCE_MODEL, check_turbulence_model
+from .numerics import check_pressure_velocity_coupling, check_velocity_gradient_limiting
+
+# the [study] keys read by SolverOptions.from_study_table
+STUDY_TABLE_KEYS = ("turbulence_model", "limit_pressure_gradient", "limit_velocity_gradient", "pressure_velocity_coupling")
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """Turbulence model, gradient limiters and pressure-velocity coupling (see case/fluid.py, case/numerics.py)."""
+
+    turbulence_model: str = DEFAULT_TURBULENCE_MODEL  # see hydroderiv.case.fluid.TURBULENCE_MODELS
+    limit_pressure_gradient: bool = False  # see hydroderiv.case.numerics.LIMITED_PRESSURE_GRADIENT
+    # Limit it only during a cold start's first-order iterations (see the same place); a warm start and
+    # everything after the switch to second order run unlimited.
+    limit_pressure_gradient_at_start: bool = False
+    limit_velocity_gradient: str = "everywhere"  # see hydroderiv.case.numerics.VELOCITY_GRADIENT_LIMITING
+    pressure_velocity_coupling: str = "SIMPLE"  # see hydroderiv.case.numerics.PRESSURE_VELOCITY_COUPLINGS
+
+    def __post_init__(self):
+        if self.limit_pressure_gradient and self.limit_pressure_gradient_at_start:
+            raise ConfigurationError("limit the pressure gradient either always or at the start, not both")
+        check_turbulence_model(self.turbulence_model)
+        check_velocity_gradient_limiting(self.limit_velocity_gradient)
+        check_pressure_velocity_coupling(self.pressure_velocity_coupling)
+
+    @classmethod
+    def from_study_table(cls, table: dict[str, Any], source: str = "") -> SolverOptions:
+        """The options of a study file's [study] table (keys STUDY_TABLE_KEYS; others are ignored here);
+        an error names ``source`` (the file) and the choices."""
+        limit_pressure_gradient = table.get("limit_pressure_gradient", False)
+        if not isinstance(limit_pressure_gradient, bool) and limit_pressure_gradient != "start":
+            raise ConfigurationError(f"{source}: [study] limit_pressure_gradient = {limit_pressure_gradient!r} must be "
+                                     "true, false or \"start\" (limited during a cold start's first-order iterations only)")
+        return cls(
+            turbulence_model=check_turbulence_model(table.get("turbulence_model", DEFAULT_TURBULENCE_MODEL), source),
+            limit_pressure_gradient=limit_pressure_gradient is True,
+            limit_pressure_gradient_at_start=limit_pressure_gradient == "start",
+            limit_velocity_gradient=check_velocity_gradient_limiting(table.get("limit_velocity_gradient", "everywhere"), source),
+            pressure_velocity_coupling=check_pressure_velocity_coupling(
+                table.get("pressure_velocity_coupling", "SIMPLE"), source),
+        )
+
+    @property
+    def folder_suffix(self) -> str:
+        """What sets a study's conditions folder apart from the defaults' ("" for the defaults). A pressure
+        gradient limited only at the start is not in it: such runs converge to the unlimited solution and
+        share the unlimited conditions."""
+        return (f"-{self.turbulence_model}" if self.turbulence_model != DEFAULT_TURBULENCE_MODEL else "") + (
+            "-limited-grad-p" if self.limit_pressure_gradient else "") + (
+            {"everywhere": "", "convection": "-grad-U-limited-in-convection",
+             "nowhere": "-unlimited-grad-U"}[self.limit_velocity_gradient]) + (
+            f"-{self.pressure_velocity_coupling}" if self.pressure_velocity_coupling != "SIMPLE" else "")
+
+    def record(self) -> dict[str, Any]:
+        """The options as a results file records them."""
+        return {"turbulence_model": self.turbulence_model,
+                "limited_pressure_gradient": self.limit_pressure_gradient,
+                "limited_velocity_gradient": self.limit_velocity_gradient,  # everywhere, or in convection only
+                "pressure_velocity_coupling": self.pressure_velocity_coupling}
