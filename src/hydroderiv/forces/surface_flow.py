@@ -23,6 +23,7 @@ way has lost it to its own boundary layer.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import Callable
 
 import numpy as np
 from foamlib import FoamFieldFile
@@ -97,17 +98,13 @@ def yplus_along_x(time_dir: str | Path, faces: WallFaces, patch: str, bins: int 
     centres, areas = faces[patch]
     area = np.linalg.norm(areas, axis=1)
     yplus = _patch_values(_field_file(time_dir, YPLUS_FIELD, "y+"), patch, len(area), 1)
-    edges, slot = slices_along_x(centres[:, 0], bins)
-    out = []
-    for k in range(bins):
-        inside = slot == k
-        if inside.any():
-            w, y = area[inside], yplus[inside]
-            out.append({"x_from": round(float(edges[k]), 3), "x_to": round(float(edges[k + 1]), 3),
-                        "faces": int(inside.sum()), "mean": round(float(np.average(y, weights=w)), 1),
-                        "max": round(float(y.max()), 1),
-                        "above_log_layer_pct": round(100.0 * float(w[y > LOG_LAYER_TOP].sum() / w.sum()), 1)})
-    return out
+
+    def summary(inside: np.ndarray) -> dict:
+        w, y = area[inside], yplus[inside]
+        return {"mean": round(float(np.average(y, weights=w)), 1), "max": round(float(y.max()), 1),
+                "above_log_layer_pct": round(100.0 * float(w[y > LOG_LAYER_TOP].sum() / w.sum()), 1)}
+
+    return _slices(centres[:, 0], bins, summary)
 
 
 def loads_along_x(time_dir: str | Path, faces: WallFaces, owners: dict[str, np.ndarray], scales: PrimeScales,
@@ -131,16 +128,17 @@ def loads_along_x(time_dir: str | Path, faces: WallFaces, owners: dict[str, np.n
         p = pressure[cells] if pressure.ndim else np.full(len(cells), float(pressure))
         shear = _patch_values(shear_file, patch, len(areas), 3)
         force = scales.rho * (p[:, None] * areas - np.linalg.norm(areas, axis=1)[:, None] * shear) / scales.force
-        edges, slot = slices_along_x(centres[:, 0], bins)
-        slices = []
-        for k in range(bins):
-            inside = slot == k
-            if inside.any():
-                y, z = force[inside, 1].sum(), force[inside, 2].sum()
-                slices.append({"x_from": round(float(edges[k]), 3), "x_to": round(float(edges[k + 1]), 3),
-                               "faces": int(inside.sum()), "Y": float(f"{y:.4g}"), "Z": float(f"{z:.4g}")})
-        out[patch] = slices
+        out[patch] = _slices(centres[:, 0], bins, lambda inside, force=force: {
+            "Y": float(f"{force[inside, 1].sum():.4g}"), "Z": float(f"{force[inside, 2].sum():.4g}")})
     return out
+
+
+def _slices(x: np.ndarray, bins: int, summary: Callable[[np.ndarray], dict]) -> list[dict]:
+    """For each of ``bins`` equal slices of the faces' x (aft to fore; empty slices left out): its x range (m),
+    its number of faces and ``summary`` of the faces in it (given as a mask)."""
+    edges, slot = slices_along_x(x, bins)
+    return [{"x_from": round(float(edges[k]), 3), "x_to": round(float(edges[k + 1]), 3), "faces": int(inside.sum()),
+             **summary(inside)} for k in range(bins) if (inside := slot == k).any()]
 
 
 def describe_yplus_along_x(report: dict) -> str | None:
