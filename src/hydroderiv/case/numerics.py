@@ -32,7 +32,8 @@ TURBULENCE_FIELDS = tuple(dict.fromkeys(field for fields in TURBULENCE_MODELS.va
 # and fins included. On the coarse AFF-8 mesh (Shih's model, 2026-12-01) it cut the side force at 4 degrees
 # of drift by 10.5 % (Y'v -0.0229 against -0.0256). A study can therefore limit it only while a cold start
 # runs first order, where the blow-up happens, and drop it when second order takes over
-# (SolverOptions.limit_pressure_gradient_at_start, case/solver_options.py): the converged solution is then the unlimited one.
+# (SolverOptions.limit_pressure_gradient_at_start, case/solver_options.py): the converged solution is then
+# the unlimited one.
 LIMITED_PRESSURE_GRADIENT = LIMITED_GRADIENT
 
 # Where the velocity gradient is limited. "everywhere" (the default, as OpenFOAM's own case templates do):
