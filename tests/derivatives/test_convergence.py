@@ -73,9 +73,9 @@ def table(level, nr_at_01, body="AFF-8", model="ShihQuadraticKE", fit=None):
                      "speed_m_s": 3.344, "fit": fit or {"nonlinear": "none", "offset": True}}}
 
 
-def three_tables(order=2.0, exact=-0.0036):
+def three_tables(order=2.0, exact=-0.0036, model="ShihQuadraticKE"):
     r = math.sqrt(2.0)
-    return {f"{level}.json": table(level, power_law(exact, 0.0008, order, r**i))
+    return {f"{level}.json": table(level, power_law(exact, 0.0008, order, r**i), model=model)
             for i, level in enumerate(("fine", "medium", "coarse"))}
 
 
@@ -110,6 +110,17 @@ def test_mixed_set_ups_and_missing_levels_are_named():
     tables["fine.json"]["meta"]["limited_pressure_gradient"] = False
     tables["medium.json"]["meta"]["limited_pressure_gradient"] = False
     grid_convergence(tables, magnitude="0.1")  # the coarse table predates the key: it was unlimited
+    tables = three_tables()
+    tables["medium.json"]["meta"]["pressure_velocity_coupling"] = "SIMPLEC"
+    with pytest.raises(ConfigurationError, match="pressure_velocity_coupling"):
+        grid_convergence(tables, magnitude="0.1")
+    tables["medium.json"]["meta"]["pressure_velocity_coupling"] = "SIMPLE"
+    grid_convergence(tables, magnitude="0.1")  # the others predate the key: they ran SIMPLE
+    tables = three_tables(model=None)
+    for t in tables.values():
+        del t["meta"]["turbulence_model"]
+    tables["fine.json"]["meta"]["turbulence_model"] = "kOmegaSST"
+    grid_convergence(tables, magnitude="0.1")  # tables before the key ran k-omega SST
     tables = three_tables()
     tables["medium.json"]["meta"]["level"] = "fine"
     with pytest.raises(ConfigurationError, match="both on the fine mesh"):

@@ -26,6 +26,7 @@ from __future__ import annotations
 import math
 from dataclasses import asdict, dataclass
 
+from ..case.solver_options import SolverOptions
 from ..errors import ConfigurationError
 from ..experiments import DERIVATIVE_UNCERTAINTY, DERIVATIVES
 from ..mesh.design import LEVELS, REFINEMENT_RATIO
@@ -162,8 +163,9 @@ class ConvergenceRow:
 
 # What must be the same in the three tables of a grid study (their meta), apart from the mesh level, with
 # the value a table written before the key existed stands for (None: no default).
-_SAME_SET_UP = {"body": None, "turbulence_model": None, "method": None, "speed_m_s": None,
-                "limited_pressure_gradient": False, "limited_velocity_gradient": "everywhere"}
+# What one grid study must share. A table written before a solver option existed ran with its default, so a
+# missing key reads as the default.
+_SAME_SET_UP = {"body": None, "method": None, "speed_m_s": None, **SolverOptions().record()}
 
 
 def _table_value(table: dict, name: str, magnitude: str | None, source: str) -> tuple[float, float | None]:
