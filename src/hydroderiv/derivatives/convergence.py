@@ -162,9 +162,8 @@ class ConvergenceRow:
 
 
 # What must be the same in the three tables of a grid study (their meta), apart from the mesh level, with
-# the value a table written before the key existed stands for (None: no default).
-# What one grid study must share. A table written before a solver option existed ran with its default, so a
-# missing key reads as the default.
+# the value a table written before the key existed stands for (None: no default). A table that predates a
+# solver option ran with that option's default.
 _SAME_SET_UP = {"body": None, "method": None, "speed_m_s": None, **SolverOptions().record()}
 
 
