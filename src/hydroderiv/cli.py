@@ -267,8 +267,10 @@ def _derivatives(args: argparse.Namespace) -> int:
         table.add_row(row.name, f"{row.value:+.5f}", f"{row.stderr:.1e}", f"{row.iterative_stderr:.1e}",
                       f"{row.single_point:+.5f}",
                       "  ".join(f"{k}: {v:+.5f}" for k, v in row.single_point_by_magnitude.items()),
-                      # a sweep at one magnitude is fitted without the table's nonlinear term: say so
-                      f"{row.n_points}" + (", slope only" if row.nonlinear_term != study.nonlinear else ""),
+                      # a sweep at one magnitude is fitted without the table's nonlinear term, and a fit with
+                      # no magnitude to spare passes through its points: say so
+                      f"{row.n_points}" + (", slope only" if row.nonlinear_term != study.nonlinear else "")
+                      + (", through the points" if row.spare_magnitudes == 0 else ""),
                       "-" if row.reference is None else f"{row.reference:+.6f}",
                       "-" if row.error_pct is None else f"{row.error_pct:+.1f}", f"{row.experimental_uncertainty_pct:.0f}")
     console.print(table)

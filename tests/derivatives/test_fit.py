@@ -52,3 +52,21 @@ def test_too_few_points_are_refused():
         DerivativeFit(nonlinear="abs").fit([0.1], [0.001])
     with pytest.raises(ConfigurationError, match="unknown nonlinear"):
         DerivativeFit(nonlinear="quartic").fit([0.1, 0.2], [0.001, 0.002])
+
+
+def test_a_fit_with_no_magnitude_to_spare_passes_through_its_mirror_pairs():
+    # Two magnitudes for slope and r|r|: the odd part is fixed by the pairs, so a curve that is not
+    # slope-plus-r|r| at all (here cubic) still leaves no odd residual, and the standard error only sees
+    # the pairs' asymmetry (none here).
+    r = np.array([-0.2, -0.1, 0.0, 0.1, 0.2])
+    y = 0.003 * r + 0.5 * r**3
+    two = DerivativeFit(nonlinear="abs", fit_offset=True).fit(r, y)
+    assert two.spare_magnitudes_ == 0
+    np.testing.assert_allclose(two.predict(r), y, atol=1e-15)
+    assert two.slope_stderr_ < 1e-12
+    assert two.slope_ == pytest.approx(2 * (y[3] / 0.1) - y[4] / 0.2)  # twice the inner secant less the outer
+    # a third magnitude over-determines it: the model error now shows in the standard error
+    r3 = np.array([-0.3, -0.2, -0.1, 0.0, 0.1, 0.2, 0.3])
+    three = DerivativeFit(nonlinear="abs", fit_offset=True).fit(r3, 0.003 * r3 + 0.5 * r3**3)
+    assert three.spare_magnitudes_ == 1 and three.slope_stderr_ > 1e-6
+    assert DerivativeFit(nonlinear="none").fit([-0.1, 0.1], [0.001, -0.001]).spare_magnitudes_ == 0

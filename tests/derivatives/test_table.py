@@ -147,3 +147,4 @@ def test_a_sweep_at_one_magnitude_is_fitted_without_the_nonlinear_term_not_dropp
     # N' carries 0.001 r|r|, which a mirror pair cannot tell from the slope: the slope is the pair's secant
     assert rows["Nr"].value == pytest.approx(-0.00372 + 0.001 * 0.1, rel=1e-9)
     assert rows["Nr"].n_points == 3  # the pair and the straight-ahead run
+    assert rows["Nr"].spare_magnitudes == 0  # one pair for one slope: the fit passes through it

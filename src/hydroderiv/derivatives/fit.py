@@ -25,12 +25,17 @@ class DerivativeFit:
 
     Parameters (configuration only, as in scikit-learn): ``nonlinear`` in {'abs', 'cubic', 'none'} and
     ``fit_offset``. :meth:`fit` returns ``self`` with the fitted attributes ``slope_``, ``slope_stderr_``,
-    ``slope_iterative_stderr_``, ``nonlinear_``, ``nonlinear_stderr_``, ``offset_``, ``residual_rms_`` and
-    ``n_points_``.
+    ``slope_iterative_stderr_``, ``nonlinear_``, ``nonlinear_stderr_``, ``offset_``, ``residual_rms_``,
+    ``n_points_`` and ``spare_magnitudes_``.
 
     Two uncertainties of the slope: ``slope_stderr_`` from the scatter of the points about the fit, and
     ``slope_iterative_stderr_`` from the points' own iterative uncertainty (``y_std`` given to :meth:`fit`,
     the standard deviation of each coefficient over its averaging window) carried through the same fit.
+
+    ``spare_magnitudes_`` is how many distinct non-zero |x| the fit has beyond its odd terms (slope, and the
+    nonlinear term). At zero the odd part of the curve passes through the points (a mirror pair per
+    magnitude fixes it exactly), so ``slope_stderr_`` measures only how far the pairs are from mirroring
+    each other, not how well the model fits the curve.
     """
 
     def __init__(self, nonlinear: str = "abs", fit_offset: bool = False):
@@ -41,8 +46,10 @@ class DerivativeFit:
         """Whether ``x`` holds the distinct non-zero |x| the odd terms need: one for the slope, one more for
         a nonlinear term."""
         x = np.asarray(x, dtype=float)
-        needed = 1 if NONLINEAR_TERMS.get(self.nonlinear) is None else 2
-        return len(np.unique(np.abs(x[x != 0]))) >= needed
+        return _magnitudes(x) >= self._odd_terms()
+
+    def _odd_terms(self) -> int:
+        return 1 if NONLINEAR_TERMS.get(self.nonlinear) is None else 2
 
     def _design(self, x: np.ndarray) -> np.ndarray:
         if self.nonlinear not in NONLINEAR_TERMS:
@@ -85,6 +92,7 @@ class DerivativeFit:
         self.offset_ = float(coef[-1]) if self.fit_offset else 0.0
         self.residual_rms_ = float(np.sqrt(np.mean(residual**2)))
         self.n_points_ = n
+        self.spare_magnitudes_ = _magnitudes(x) - self._odd_terms()
         return self
 
     def predict(self, x) -> np.ndarray:
@@ -95,3 +103,9 @@ class DerivativeFit:
         if self.fit_offset:
             coef.append(self.offset_)
         return self._design(x) @ np.array(coef)
+
+
+def _magnitudes(x) -> int:
+    """The number of distinct non-zero |x|."""
+    x = np.asarray(x, dtype=float)
+    return len(np.unique(np.abs(x[x != 0])))

@@ -72,6 +72,8 @@ class DerivativeRow:
     error_pct: float | None
     experimental_uncertainty_pct: float
     nonlinear_term: str = "abs"  # the fit's nonlinear term: the table's, or "none" for a sweep at one magnitude
+    # magnitudes beyond the fit's odd terms; at 0 the slope passes through the points (see DerivativeFit)
+    spare_magnitudes: int | None = None
 
 
 @dataclass
@@ -166,6 +168,7 @@ def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> l
                 error_pct=100.0 * (fit.slope_ - ref) / abs(ref) if ref else None,
                 experimental_uncertainty_pct=100.0 * DERIVATIVE_UNCERTAINTY[kind],
                 nonlinear_term=fit.nonlinear,
+                spare_magnitudes=fit.spare_magnitudes_,
             )
         )
     return rows
