@@ -45,7 +45,6 @@ class DerivativeFit:
     def has_enough_magnitudes(self, x) -> bool:
         """Whether ``x`` holds the distinct non-zero |x| the odd terms need: one for the slope, one more for
         a nonlinear term."""
-        x = np.asarray(x, dtype=float)
         return _magnitudes(x) >= self._odd_terms()
 
     def _odd_terms(self) -> int:
@@ -66,7 +65,8 @@ class DerivativeFit:
         x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
         design = self._design(x)
         n, p = design.shape
-        if n < p or not self.has_enough_magnitudes(x):
+        spare_magnitudes = _magnitudes(x) - self._odd_terms()
+        if n < p or spare_magnitudes < 0:
             raise ConfigurationError(
                 f"{n} points at {len(np.unique(np.abs(x)))} distinct magnitudes cannot determine {p} terms; "
                 "add conditions to the sweep"
@@ -92,7 +92,7 @@ class DerivativeFit:
         self.offset_ = float(coef[-1]) if self.fit_offset else 0.0
         self.residual_rms_ = float(np.sqrt(np.mean(residual**2)))
         self.n_points_ = n
-        self.spare_magnitudes_ = _magnitudes(x) - self._odd_terms()
+        self.spare_magnitudes_ = spare_magnitudes
         return self
 
     def predict(self, x) -> np.ndarray:
