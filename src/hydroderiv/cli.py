@@ -166,7 +166,7 @@ def _study_status(args: argparse.Namespace) -> int:
 
 
 def _study_flow(args: argparse.Namespace) -> int:
-    from .forces.surface_flow import LOG_LAYER_TOP
+    from .forces.surface_flow import LOG_LAYER_TOP, slice_values
     from .studies.study import Study, study_wall_reports
 
     study = Study.load(args.file)
@@ -186,16 +186,19 @@ def _study_flow(args: argparse.Namespace) -> int:
             table.add_row(name, *(f"{report[p]['reversed_pct']:.2f}" for p in parts))
     console.print(table)
     yplus = {name: report["yplus_along_x"] for name, report in reports.items()}
-    table = Table(title=f"first-cell y+ along x, aft to fore: slice mean (% of its area above {LOG_LAYER_TOP:.0f})")
+    table = Table(title=f"first-cell y+ along x, aft to fore: slice mean (% of its area above {LOG_LAYER_TOP:.0f}), "
+                        "and from the wall shear stress")
     table.add_column("condition")
     table.add_column("part")
     table.add_column("slices")
+    table.add_column("from the wall shear")
     for name, report in yplus.items():
         if "error" in report:
-            table.add_row(name, "", report["error"])
+            table.add_row(name, "", report["error"], "")
             continue
         for part, slices in report.items():
-            table.add_row(name, part, " ".join(f"{s['mean']:.0f} ({s['above_log_layer_pct']:.0f})" for s in slices))
+            table.add_row(name, part, " ".join(f"{s['mean']:.0f} ({s['above_log_layer_pct']:.0f})" for s in slices),
+                          slice_values(slices, "friction_mean") or "-")
     console.print(table)
     loads = {name: report["loads_along_x"] for name, report in reports.items()}
     table = Table(title="side and vertical force along x, aft to fore: Y' and Z' of each slice, in 1e-6")

@@ -6,8 +6,8 @@ import pytest
 
 from hydroderiv.errors import HydroderivError
 from hydroderiv.forces import PrimeScales
-from hydroderiv.forces.surface_flow import (describe_reversed_flow, describe_yplus_along_x, loads_along_x, reversed_flow,
-                                            yplus_along_x)
+from hydroderiv.forces.surface_flow import (describe_reversed_flow, describe_yplus_along_x, friction_yplus, loads_along_x,
+                                            reversed_flow, yplus_along_x)
 from hydroderiv.mesh.quality import patch_faces, patch_owners
 
 HEADER = "FoamFile\n{{\n    version 2.0;\n    format {fmt};\n    class {cls};\n    object {obj};\n}}\n"
@@ -139,6 +139,66 @@ def test_yplus_along_x_weights_by_area_and_finds_the_slice_beyond_the_log_layer(
     assert describe_yplus_along_x({"hull": resolved}) == "hull y+ along x, aft to fore: 0.53 1.2 (% of area above 300: 0 0)"
     with pytest.raises(HydroderivError, match="yPlus is missing"):
         yplus_along_x(tmp_path, patch_faces(mesh, ["hull"]), "hull")
+
+
+def _wall_law_fields(time_dir, wall_law, k_cells, shear):
+    """nut with ``wall_law`` on the hull, k in the cells next to it and the wall shear stress on it."""
+    (time_dir / "nut").write_text(HEADER.format(fmt="ascii", cls="volScalarField", obj="nut") + f"""
+dimensions      [0 2 -1 0 0 0 0];
+internalField   uniform 0;
+boundaryField
+{{
+    hull {{ type {wall_law}; Cmu 0.09; value uniform 0; }}
+}}
+""")
+    (time_dir / "k").write_text(HEADER.format(fmt="ascii", cls="volScalarField", obj="k") + f"""
+dimensions      [0 2 -2 0 0 0 0];
+internalField   nonuniform List<scalar> {len(k_cells)}({' '.join(map(str, k_cells))});
+boundaryField
+{{
+    hull {{ type kqRWallFunction; value uniform 0; }}
+}}
+""")
+    vectors = " ".join(f"({a} {b} {c})" for a, b, c in shear)
+    (time_dir / "wallShearStress").write_text(HEADER.format(fmt="ascii", cls="volVectorField", obj="wallShearStress") + f"""
+dimensions      [0 2 -2 0 0 0 0];
+internalField   uniform (0 0 0);
+boundaryField
+{{
+    hull {{ type calculated; value nonuniform List<vector> {len(shear)}({vectors}); }}
+}}
+""")
+
+
+def test_yplus_from_the_wall_shear_recovers_the_distance_from_a_k_based_wall_law(tmp_path, strip_of_faces):
+    mesh = strip_of_faces(tmp_path, [0, 1, 2])
+    time_dir = _yplus(tmp_path, [0.1, 60.0])
+    # a resolved sublayer (k small) reads 0.1 from k; the log layer is in equilibrium, u_tau^2 = C_mu^0.5 k
+    u_tau = 0.12
+    k_cells = [1e-6, u_tau**2 / 0.3]
+    _wall_law_fields(time_dir, "nutkWallFunction", k_cells, [(-0.0144, 0, 0), (u_tau**2, 0, 0)])
+    owners = patch_owners(mesh, ["hull"])["hull"]
+    friction = friction_yplus(time_dir, "hull", np.array([0.1, 60.0]), owners)
+    # y_P / nu = 0.1 / (0.09^0.25 * 1e-3) = 182.6; times u_tau = 0.12 gives 21.9
+    assert friction == pytest.approx([0.1 * 0.12 / (0.09**0.25 * 1e-3), 60.0])
+    aft, fore = yplus_along_x(time_dir, patch_faces(mesh, ["hull"]), "hull", bins=2, owners=owners)
+    assert (aft["mean"], aft["friction_mean"], fore["friction_mean"]) == (0.1, 21.9, 60.0)
+    line = describe_yplus_along_x({"hull": [aft, fore]})
+    assert line.endswith("; from the wall shear stress: 22 60")
+    # without the cells next to the faces only OpenFOAM's own y+ is given
+    assert "friction_mean" not in yplus_along_x(time_dir, patch_faces(mesh, ["hull"]), "hull", bins=2)[0]
+
+
+def test_other_wall_laws_already_report_the_friction_yplus(tmp_path, strip_of_faces):
+    mesh = strip_of_faces(tmp_path, [0, 1, 2])
+    time_dir = _yplus(tmp_path, [1.5, 40.0])
+    owners = patch_owners(mesh, ["hull"])["hull"]
+    assert friction_yplus(time_dir, "hull", np.array([1.5, 40.0]), owners) is None  # no wall shear, no nut
+    _wall_law_fields(time_dir, "nutUSpaldingWallFunction", [0.0, 0.0], [(0.01, 0, 0), (0.01, 0, 0)])
+    assert friction_yplus(time_dir, "hull", np.array([1.5, 40.0]), owners) == pytest.approx([1.5, 40.0])
+    _wall_law_fields(time_dir, "nutkWallFunction", [0.0, 0.04 / 0.3], [(0.01, 0, 0), (0.04, 0, 0)])
+    # a cell without turbulence energy gives no distance: OpenFOAM's value stands there
+    assert friction_yplus(time_dir, "hull", np.array([1.5, 40.0]), owners) == pytest.approx([1.5, 40.0])
 
 
 def _pressure_and_shear(case, pressure, shear):

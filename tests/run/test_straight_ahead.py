@@ -50,6 +50,22 @@ def test_forces_stopped_the_run_not_an_iteration_count(straight):
     assert record["total_seconds"] > record["wall_seconds"] > 0  # set-up and decomposition come on top
 
 
+def test_yplus_from_the_wall_shear_matches_the_k_based_one_where_the_boundary_layer_is_in_equilibrium(straight):
+    """Along the parallel middle body (1.016 to 3.245 m from the nose, Groves et al. 1989) the boundary layer
+    is near equilibrium, u_tau^2 = C_mu^0.5 k in the log layer: the wall law's k-based y+ and the one from
+    the wall shear stress agree. At the nose the boundary layer is young and its k has not built up, so the
+    k-based y+ reads low there (as in a resolved sublayer, where k falls as y^2)."""
+    _, record, _, _ = straight
+    slices = record["yplus_along_x"]["hull"]
+    middle_body = [s for s in slices if s["x_from"] > 2.013 - 3.245 - 0.05 and s["x_to"] < 2.013 - 1.016]
+    assert len(middle_body) >= 3
+    for s in middle_body:
+        assert 30.0 < s["mean"] < 300.0  # the first cells in the log layer
+        assert s["friction_mean"] == pytest.approx(s["mean"], rel=0.05), s
+    nose = slices[-1]
+    assert nose["friction_mean"] > 1.5 * nose["mean"]
+
+
 def test_a_cold_start_switches_to_second_order_and_converges_on_it(straight):
     from foamlib import FoamFile
 
@@ -122,7 +138,7 @@ def test_the_boundary_layer_stays_attached_over_the_whole_hull_area(straight, su
 
 def test_a_record_without_the_wall_reports_gets_them_from_the_saved_solution(straight):
     from hydroderiv.case.setup import latest_time_dir
-    from hydroderiv.run.condition import WALL_REPORTS, add_wall_reports, read_result
+    from hydroderiv.run.condition import WALL_REPORTS, add_wall_reports, lacking_wall_reports, read_result
 
     case, record, _, settings = straight
     stripped = {k: v for k, v in record.items() if k not in WALL_REPORTS}  # as a run from before the reports
@@ -139,8 +155,19 @@ def test_a_record_without_the_wall_reports_gets_them_from_the_saved_solution(str
         slices, made = reports["yplus_along_x"]["hull"], record["yplus_along_x"]["hull"]
         assert [s["faces"] for s in slices] == [s["faces"] for s in made]
         assert [s["mean"] for s in slices] == pytest.approx([s["mean"] for s in made], rel=0.01)
+        assert [s["friction_mean"] for s in slices] == pytest.approx([s["friction_mean"] for s in made], rel=0.01)
+        loads, made = reports["loads_along_x"]["hull"], record["loads_along_x"]["hull"]
+        assert [s["faces"] for s in loads] == [s["faces"] for s in made]
+        # the pressure and the wall shear are those the run wrote: the same loads slice by slice
+        assert [s["Y"] for s in loads] == pytest.approx([s["Y"] for s in made], rel=1e-3, abs=1e-9)
         again = read_result(case)
         assert {k: again[k] for k in WALL_REPORTS} == reports and again["coefficients"] == record["coefficients"]
+        # y+ slices from before they gave the y+ from the wall shear stress are made again, and only they
+        older = {**again, "yplus_along_x": {"hull": [{k: v for k, v in s.items() if not k.startswith("friction")}
+                                                     for s in again["yplus_along_x"]["hull"]]}}
+        assert lacking_wall_reports(older) == ["yplus_along_x"] and lacking_wall_reports(again) == []
+        (case / RESULT_FILE).write_text(json.dumps(older))
+        assert add_wall_reports(case, settings)["yplus_along_x"] == again["yplus_along_x"]
     finally:
         (case / RESULT_FILE).write_text(json.dumps(record))
 

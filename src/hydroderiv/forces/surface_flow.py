@@ -13,7 +13,9 @@ Open cross-flow separation on the lee side of a body at incidence is not counted
 wall still runs aft, only turned sideways.
 
 y+ along the body: the first cell's y+ in slices along x (yplus_along_x), because the patch-wide mean hides
-the regions, such as a tail cone without prism layers, where a wall-function mesh is out of its range.
+the regions, such as a tail cone without prism layers, where a wall-function mesh is out of its range. Each
+slice gives OpenFOAM's y+ and the one from the wall shear stress: on a nutkWallFunction wall OpenFOAM's is
+based on k, which reads ten times too low where the first cell sits in a resolved viscous sublayer.
 
 Loads along the body: each part's side and vertical force in slices along x (loads_along_x), because a part's
 total hides where it arises: a fin's lift belongs to its fore half, and a fin whose aft half pulls the other
@@ -34,6 +36,12 @@ from .coefficients import PrimeScales
 
 FIELD = "wallShearStress"  # written by OpenFOAM's wallShearStress function object (see case/setup.py)
 YPLUS_FIELD = "yPlus"  # written by OpenFOAM's yPlus function object
+TURBULENCE_ENERGY_FIELD = "k"
+EDDY_VISCOSITY_FIELD = "nut"
+# Wall laws whose y+ (as OpenFOAM's yPlus function object reports it) is C_mu^0.25 k_P^0.5 y_P / nu, with k_P
+# the turbulence energy of the first cell; the other wall conditions report y_P u_tau / nu.
+K_BASED_WALL_LAWS = ("nutkWallFunction",)
+DEFAULT_CMU = 0.09  # the wall functions' default C_mu
 PRESSURE_FIELD = "p"  # simpleFoam's kinematic pressure, p / rho
 # Above this y+ the first cell centre lies beyond the logarithmic layer that wall functions assume.
 LOG_LAYER_TOP = 300.0
@@ -87,24 +95,64 @@ def reversed_flow(
     return out
 
 
-def yplus_along_x(time_dir: str | Path, faces: WallFaces, patch: str, bins: int = 8) -> list[dict]:
+def friction_yplus(time_dir: str | Path, patch: str, yplus: np.ndarray, owners: np.ndarray) -> np.ndarray | None:
+    """The first cell's y+ on ``patch`` from the wall shear stress, y_P u_tau / nu with u_tau = |tau_w|^0.5,
+    given OpenFOAM's ``yplus`` there and the cells next to the faces (``owners``); None without the fields.
+
+    On a nutkWallFunction wall OpenFOAM reports C_mu^0.25 k_P^0.5 y_P / nu: the friction velocity a log layer
+    in equilibrium would have. In a resolved sublayer k_P falls as y^2, so that reads about 0.1 where the first
+    cell centre is at y+ 1. The distance y_P / nu is recovered from it, so no cell centres are needed:
+    y+ = yplus |tau_w|^0.5 / (C_mu^0.25 k_P^0.5). Other wall conditions already report y_P u_tau / nu.
+    """
+    time_dir = Path(time_dir)
+    if not (time_dir / FIELD).is_file() or not (time_dir / EDDY_VISCOSITY_FIELD).is_file():
+        return None
+    wall = FoamFieldFile(time_dir / EDDY_VISCOSITY_FIELD).boundary_field[patch]
+    if wall.get("type") not in K_BASED_WALL_LAWS:
+        return np.asarray(yplus, dtype=float)
+    if not (time_dir / TURBULENCE_ENERGY_FIELD).is_file():
+        return None
+    shear = _patch_values(_field_file(time_dir, FIELD, "wall shear stress"), patch, len(yplus), 3)
+    k = np.asarray(_field_file(time_dir, TURBULENCE_ENERGY_FIELD, "turbulence energy").internal_field, dtype=float)
+    k_cell = k[owners] if k.ndim else np.full(len(owners), float(k))
+    cmu = float(wall.get("Cmu", DEFAULT_CMU))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        ratio = np.sqrt(np.linalg.norm(shear, axis=1)) / (cmu**0.25 * np.sqrt(k_cell))
+    # a cell with no turbulence energy left gives no distance: keep OpenFOAM's value there
+    return np.where(k_cell > 0.0, yplus * ratio, yplus)
+
+
+def yplus_along_x(time_dir: str | Path, faces: WallFaces, patch: str, bins: int = 8,
+                  owners: np.ndarray | None = None) -> list[dict]:
     """First-cell y+ on one patch of ``faces`` in ``bins`` equal slices of its length along x, aft to fore.
 
     The patch-wide mean hides where the wall treatment leaves its range: on the medium AFF-8 hull it is 123,
     but 120-520 over the tail cone, where snappy drops the prism layers and the first cells are the hull's
-    own surface cells. Each slice: its x range (m), faces, the area-weighted mean and the largest y+, and
-    the % of its area above LOG_LAYER_TOP.
+    own surface cells. Each slice: its x range (m), faces, the area-weighted mean and the largest y+ as
+    OpenFOAM reports it, and the % of its area above LOG_LAYER_TOP; given the cells next to the faces
+    (``owners``, see mesh.quality.patch_owners), also the mean and largest y+ from the wall shear stress
+    (``friction_mean``, ``friction_max``; see friction_yplus).
     """
     centres, areas = faces[patch]
     area = np.linalg.norm(areas, axis=1)
     yplus = _patch_values(_field_file(time_dir, YPLUS_FIELD, "y+"), patch, len(area), 1)
+    friction = None if owners is None else friction_yplus(time_dir, patch, yplus, owners)
 
     def summary(inside: np.ndarray) -> dict:
         w, y = area[inside], yplus[inside]
-        return {"mean": round(float(np.average(y, weights=w)), 1), "max": round(float(y.max()), 1),
-                "above_log_layer_pct": round(100.0 * float(w[y > LOG_LAYER_TOP].sum() / w.sum()), 1)}
+        out = {"mean": round(float(np.average(y, weights=w)), 1), "max": round(float(y.max()), 1),
+               "above_log_layer_pct": round(100.0 * float(w[y > LOG_LAYER_TOP].sum() / w.sum()), 1)}
+        if friction is not None:
+            out["friction_mean"] = _rounded(float(np.average(friction[inside], weights=w)))
+            out["friction_max"] = _rounded(float(friction[inside].max()))
+        return out
 
     return _slices(centres[:, 0], bins, summary)
+
+
+def _rounded(value: float) -> float:
+    """One decimal, or three significant figures below 10 (a resolved wall's y+ is about 1)."""
+    return round(value, 1) if value >= 10 else float(f"{value:.3g}")
 
 
 def loads_along_x(time_dir: str | Path, faces: WallFaces, owners: dict[str, np.ndarray], scales: PrimeScales,
@@ -141,15 +189,25 @@ def _slices(x: np.ndarray, bins: int, summary: Callable[[np.ndarray], dict]) -> 
              **summary(inside)} for k in range(bins) if (inside := slot == k).any()]
 
 
+def slice_values(slices: list[dict], key: str) -> str | None:
+    """The y+ ``key`` of each slice, aft to fore, as one line (None when a slice lacks it, as the records made
+    before that key existed do); two figures below 10, where a resolved wall's y+ of about 1 lies."""
+    if not slices or any(key not in s for s in slices):
+        return None
+    return " ".join(f"{s[key]:.2g}" if s[key] < 10 else f"{s[key]:.0f}" for s in slices)
+
+
 def describe_yplus_along_x(report: dict) -> str | None:
     """One line per part: its y+ slice means aft to fore, with the % of each slice's area above the log layer."""
     if "error" in report:
         return f"y+ along x not reported: {report['error']}"
     lines = []
     for part, slices in report.items():
-        means = " ".join(f"{s['mean']:.2g}" if s["mean"] < 10 else f"{s['mean']:.0f}" for s in slices)  # resolved walls: y+ ~ 1
         above = " ".join(f"{s['above_log_layer_pct']:.0f}" for s in slices)
-        lines.append(f"{part} y+ along x, aft to fore: {means} (% of area above {LOG_LAYER_TOP:.0f}: {above})")
+        line = f"{part} y+ along x, aft to fore: {slice_values(slices, 'mean')} (% of area above {LOG_LAYER_TOP:.0f}: {above})"
+        if (friction := slice_values(slices, "friction_mean")) is not None:
+            line += f"; from the wall shear stress: {friction}"
+        lines.append(line)
     return "\n    ".join(lines) or None
 
 

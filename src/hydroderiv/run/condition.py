@@ -51,9 +51,10 @@ def _yplus_summary(case: Path) -> dict:
     return out
 
 
-# The record keys _wall_reports fills, each with the OpenFOAM field it reads; those in FUNCTION_OBJECT_FIELDS
+# The record keys _wall_reports fills, each with the OpenFOAM fields it reads; those in FUNCTION_OBJECT_FIELDS
 # are written by a function object of the same name, which can make them again from a saved solution.
-WALL_REPORTS = {"reversed_flow": WALL_SHEAR, "yplus_along_x": YPLUS_FIELD, "loads_along_x": PRESSURE_FIELD}
+WALL_REPORTS = {"reversed_flow": (WALL_SHEAR,), "yplus_along_x": (YPLUS_FIELD, WALL_SHEAR),
+                "loads_along_x": (PRESSURE_FIELD, WALL_SHEAR)}
 FUNCTION_OBJECT_FIELDS = (WALL_SHEAR, YPLUS_FIELD)
 
 
@@ -63,42 +64,51 @@ def _wall_reports(case: Path, condition: Condition, settings: CaseSettings) -> d
     each part.
 
     Reports, not results: one that cannot be made gives its message instead, and the forces stand. The
-    parts' faces are read once for both (a few seconds on a medium mesh).
+    parts' faces and the cells next to them are read once for all (a few seconds on a medium mesh).
     """
     if not settings.components:
         return {key: {} for key in WALL_REPORTS}
     time_dir = latest_time_dir(case)
+    scales = PrimeScales(settings.fluid.rho, condition.speed, settings.length)
     makers = {
-        "reversed_flow": lambda faces: reversed_flow(time_dir, faces, condition.inflow(),
-                                                     condition.angular_velocity(settings.length)),
-        "yplus_along_x": lambda faces: {part: yplus_along_x(time_dir, faces, part)
-                                        for part in faces if not is_thin_part(part)},
-        "loads_along_x": lambda faces: _loads_along_x(case, time_dir, faces, condition, settings),
+        "reversed_flow": lambda faces, owners: reversed_flow(time_dir, faces, condition.inflow(),
+                                                             condition.angular_velocity(settings.length)),
+        "yplus_along_x": lambda faces, owners: {part: yplus_along_x(time_dir, faces, part, owners=owners[part])
+                                                for part in faces if not is_thin_part(part)},
+        "loads_along_x": lambda faces, owners: loads_along_x(time_dir, faces, owners, scales),
     }
     try:
         faces = patch_faces(case / "constant/polyMesh", settings.components)
+        owners = patch_owners(case / "constant/polyMesh", list(faces))
     except (HydroderivError, OSError) as error:
         return {key: {"error": str(error)} for key in makers}
     reports = {}
     for key, make in makers.items():
         try:
-            reports[key] = make(faces)
+            reports[key] = make(faces, owners)
         except (HydroderivError, OSError) as error:
             reports[key] = {"error": str(error)}
     return reports
 
 
-def _loads_along_x(case: Path, time_dir: Path, faces, condition: Condition, settings: CaseSettings) -> dict:
-    owners = patch_owners(case / "constant/polyMesh", list(faces))
-    scales = PrimeScales(settings.fluid.rho, condition.speed, settings.length)
-    return loads_along_x(time_dir, faces, owners, scales)
+def _lacking(report: dict | None) -> bool:
+    """True for a wall report to make (again): absent, an error, or y+ slices from before they gave the y+
+    from the wall shear stress."""
+    if report is None or "error" in report:
+        return True
+    return any(isinstance(s, list) and s and "mean" in s[0] and "friction_mean" not in s[0] for s in report.values())
+
+
+def lacking_wall_reports(record: dict) -> list[str]:
+    """The wall reports of a finished record that add_wall_reports would make (again)."""
+    return [key for key in WALL_REPORTS if _lacking(record.get(key))]
 
 
 def add_wall_reports(case: str | Path, settings: CaseSettings, record: dict | None = None) -> dict[str, dict]:
     """The wall-flow reports of a finished condition by record key (see ``_wall_reports``).
 
-    A condition finished before a report existed lacks it (one that failed to be made holds its error):
-    those are made now from the saved solution, post-processing the fields they need (seconds), and the
+    A condition finished before a report existed lacks it (one that failed to be made holds its error; y+
+    slices may lack the y+ from the wall shear stress): those are made now from the saved solution, post-processing the fields they need (seconds), and the
     record is rewritten atomically with them added. ``record`` is the condition's result when the caller
     has read it already.
     """
@@ -106,10 +116,10 @@ def add_wall_reports(case: str | Path, settings: CaseSettings, record: dict | No
     record = record if record is not None else read_result(case)
     if record is None:
         raise HydroderivError(f"{case} has no finished result")
-    missing = [key for key in WALL_REPORTS if key not in record or "error" in record[key]]
+    missing = lacking_wall_reports(record)
     if missing:
         latest = latest_time_dir(case)
-        for field in (WALL_REPORTS[key] for key in missing):
+        for field in dict.fromkeys(field for key in missing for field in WALL_REPORTS[key]):
             if field in FUNCTION_OBJECT_FIELDS and latest is not None and settings.components and not (latest / field).is_file():
                 run_application(case, ["simpleFoam", "-postProcess", "-func", field, "-latestTime"],
                                 log_name=field)

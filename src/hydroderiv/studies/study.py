@@ -60,7 +60,7 @@ from ..errors import ConfigurationError, HydroderivError
 from ..forces.surface_flow import describe_reversed_flow, describe_yplus_along_x
 from ..geometry import Body
 from ..mesh.design import mesh_options
-from ..run.condition import WALL_REPORTS, add_wall_reports, read_result, run_condition
+from ..run.condition import add_wall_reports, lacking_wall_reports, read_result, run_condition
 from ..run.monitor import ConvergenceCriterion
 from ..run.solver import Progress
 from .workspace import Workspace, is_suboff
@@ -303,7 +303,7 @@ def study_wall_reports(study: Study, log: Callable[[str], None] = print) -> dict
         record = read_result(case)
         if record is None:
             continue
-        missing = [key for key in WALL_REPORTS if key not in record]
+        missing = lacking_wall_reports(record)
         if missing:
             names = {"reversed_flow": "reversed flow", "yplus_along_x": "y+ along x", "loads_along_x": "loads along x"}
             log(f"  {condition.name}: {', '.join(names[k] for k in missing)} from the saved solution ...")
