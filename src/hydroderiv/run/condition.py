@@ -108,9 +108,9 @@ def add_wall_reports(case: str | Path, settings: CaseSettings, record: dict | No
     """The wall-flow reports of a finished condition by record key (see ``_wall_reports``).
 
     A condition finished before a report existed lacks it (one that failed to be made holds its error; y+
-    slices may lack the y+ from the wall shear stress): those are made now from the saved solution, post-processing the fields they need (seconds), and the
-    record is rewritten atomically with them added. ``record`` is the condition's result when the caller
-    has read it already.
+    slices may lack the y+ from the wall shear stress): those are made now from the saved solution,
+    post-processing the fields they need (seconds), and the record is rewritten atomically with them added.
+    ``record`` is the condition's result when the caller has read it already.
     """
     case = Path(case)
     record = record if record is not None else read_result(case)
