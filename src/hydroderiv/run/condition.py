@@ -91,17 +91,15 @@ def _wall_reports(case: Path, condition: Condition, settings: CaseSettings) -> d
     return reports
 
 
-def _lacking(report: dict | None) -> bool:
-    """True for a wall report to make (again): absent, an error, or y+ slices from before they gave the y+
-    from the wall shear stress."""
-    if report is None or "error" in report:
-        return True
-    return any(isinstance(s, list) and s and "mean" in s[0] and "friction_mean" not in s[0] for s in report.values())
-
-
 def lacking_wall_reports(record: dict) -> list[str]:
-    """The wall reports of a finished record that add_wall_reports would make (again)."""
-    return [key for key in WALL_REPORTS if _lacking(record.get(key))]
+    """The wall reports of a finished record that add_wall_reports would make (again): absent, an error, or
+    y+ slices from before they gave the y+ from the wall shear stress."""
+    def lacking(key: str, report: dict | None) -> bool:
+        if report is None or "error" in report:
+            return True
+        return key == "yplus_along_x" and any(slices and "friction_mean" not in slices[0] for slices in report.values())
+
+    return [key for key in WALL_REPORTS if lacking(key, record.get(key))]
 
 
 def add_wall_reports(case: str | Path, settings: CaseSettings, record: dict | None = None) -> dict[str, dict]:
