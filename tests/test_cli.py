@@ -64,8 +64,9 @@ def test_progress_shows_each_condition_from_its_own_first_iteration(capsys):
 
 
 def test_a_committed_table_is_refitted_from_the_forces_it_carries(tmp_path, capsys):
-    """``derivatives --conditions`` refits the committed medium AFF-8 table without its work directory: the
-    same fits, and per magnitude the mirror pair's single point, (Y'(+b) - Y'(-b)) / (2 cos b sin b)."""
+    """``derivatives --conditions`` refits the medium AFF-8 table of record without its work directory: the
+    same fits (the pitch turns' Z'q and M'q too), and per magnitude the mirror pair's single point,
+    (Y'(+b) - Y'(-b)) / (2 cos b sin b)."""
     import math
     from pathlib import Path
 
@@ -76,9 +77,9 @@ def test_a_committed_table_is_refitted_from_the_forces_it_carries(tmp_path, caps
                  str(root / "validation/derivatives-AFF-8-medium.json"), "--out", str(out)])
     assert code == 0 and "Yv" in capsys.readouterr().out
     refit = json.loads(out.read_text())
-    for name in ("Yv", "Nv", "Zw", "Mw", "Yr", "Nr"):
+    for name in ("Yv", "Nv", "Zw", "Mw", "Yr", "Nr", "Zq", "Mq"):
         assert refit[name] == pytest.approx(committed[name], rel=1e-12)
-    assert refit["meta"]["turbulence_model"] == "kOmegaSST" and refit["meta"]["method"] == "hybrid"
+    assert refit["meta"]["turbulence_model"] == "SpalartAllmaras" and refit["meta"]["method"] == "hybrid"
     side_force = {c["condition"]["drift_deg"]: c["coefficients"]["Y"] for c in committed["conditions"]
                   if c["condition"]["pitch_deg"] == 0 and c["condition"]["yaw_rate_prime"] == 0}
     b = math.radians(4)
