@@ -275,7 +275,8 @@ def _derivatives(args: argparse.Namespace) -> int:
                       f"{row.n_points}" + (", slope only" if row.nonlinear_term != study.nonlinear else "")
                       + (", through the points" if row.spare_magnitudes == 0 else ""),
                       "-" if row.reference is None else f"{row.reference:+.6f}",
-                      "-" if row.error_pct is None else f"{row.error_pct:+.1f}", f"{row.experimental_uncertainty_pct:.0f}")
+                      "-" if row.error_pct is None else f"{row.error_pct:+.1f}",
+                      "-" if row.experimental_uncertainty_pct is None else f"{row.experimental_uncertainty_pct:.0f}")
     console.print(table)
     out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": body,

@@ -49,6 +49,9 @@ def test_fits_each_sweep_and_compares_with_the_experiment(tmp_path):
     assert rows["Nv"].single_point_by_magnitude == pytest.approx({"4": -0.0135, "8": -0.0135}, rel=1e-9)
     assert set(rows["Nr"].single_point_by_magnitude) == {"0.1", "0.2"}
     assert rows["Nv"].experimental_uncertainty_pct == 5 and rows["Nr"].experimental_uncertainty_pct == 10
+    # a body without measured derivatives has neither an error nor an experimental uncertainty
+    unmeasured = derivative_table(synthetic_results(), reference_key="AFF-1")
+    assert all(r.reference is None and r.error_pct is None and r.experimental_uncertainty_pct is None for r in unmeasured)
     results = synthetic_results()
     json_path, csv_path = write_table(list(rows.values()), tmp_path / "d.json", {"level": "x"}, results)
     data = json.loads(json_path.read_text())

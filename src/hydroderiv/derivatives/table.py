@@ -70,7 +70,7 @@ class DerivativeRow:
     n_points: int
     reference: float | None
     error_pct: float | None
-    experimental_uncertainty_pct: float
+    experimental_uncertainty_pct: float | None  # the reports' stated uncertainty; None where nothing was measured
     nonlinear_term: str = "abs"  # the fit's nonlinear term: the table's, or "none" for a sweep at one magnitude
     # magnitudes beyond the fit's odd terms; at 0 the slope passes through the points (see DerivativeFit)
     spare_magnitudes: int | None = None
@@ -166,7 +166,7 @@ def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> l
                 n_points=fit.n_points_,
                 reference=ref,
                 error_pct=100.0 * (fit.slope_ - ref) / abs(ref) if ref else None,
-                experimental_uncertainty_pct=100.0 * DERIVATIVE_UNCERTAINTY[kind],
+                experimental_uncertainty_pct=None if ref is None else 100.0 * DERIVATIVE_UNCERTAINTY[kind],
                 nonlinear_term=fit.nonlinear,
                 spare_magnitudes=fit.spare_magnitudes_,
             )
