@@ -151,3 +151,21 @@ def test_a_sweep_at_one_magnitude_is_fitted_without_the_nonlinear_term_not_dropp
     assert rows["Nr"].value == pytest.approx(-0.00372 + 0.001 * 0.1, rel=1e-9)
     assert rows["Nr"].n_points == 3  # the pair and the straight-ahead run
     assert rows["Nr"].spare_magnitudes == 0  # one pair for one slope: the fit passes through it
+
+
+def test_the_tables_of_record_repeat_a_yaw_turn_as_a_pitch_turn_turned_by_90_degrees():
+    """A pitch turn of AFF-8 meets its sail edge-on, so it sees what a yaw turn of AFF-3 (the same hull and
+    cruciform stern) sees turned by 90 degrees about the axis: Z'q = -Y'r and M'q = N'r, at every rate. The two
+    committed medium tables come from different meshes (AFF-3's with relative layer sizes), so to within a few
+    per cent, not exactly."""
+    from pathlib import Path
+
+    root = Path(__file__).parents[2] / "validation"
+    aff8 = json.loads((root / "derivatives-AFF-8-medium.json").read_text())
+    aff3 = json.loads((root / "derivatives-AFF-3-medium.json").read_text())
+    for pitch, yaw, sign in (("Zq", "Yr", -1), ("Mq", "Nr", 1)):
+        assert aff8[pitch] == pytest.approx(sign * aff3[yaw], rel=0.04)
+        by_rate = aff8["details"][pitch]["single_point_by_magnitude"]
+        assert set(by_rate) == {"0.1", "0.2", "0.3"}
+        for rate, value in by_rate.items():
+            assert value == pytest.approx(sign * aff3["details"][yaw]["single_point_by_magnitude"][rate], rel=0.04)
