@@ -148,3 +148,35 @@ def test_a_broken_table_is_named_by_refit_and_grid_convergence(tmp_path, capsys,
     assert f"broken.json: {message}" in capsys.readouterr().out
     assert main(["convergence", str(bad), str(bad), str(bad)]) == 2
     assert f"broken.json: {message}" in capsys.readouterr().out
+
+
+def test_stability_of_a_committed_table_for_its_own_body_or_a_given_mass(tmp_path, capsys):
+    """`hydroderiv stability TABLE` gives the table's recorded stability for its neutrally buoyant body; a
+    given mass enters the sway damping as Y'r - m' (the body's own centripetal force), so C_H follows by hand."""
+    from pathlib import Path
+
+    table_path = Path(__file__).parent.parent / "validation/derivatives-AFF-3-medium.json"
+    table = json.loads(table_path.read_text())
+    out = tmp_path / "stability.json"
+    assert main(["stability", str(table_path), "--out", str(out)]) == 0
+    assert "horizontal" in capsys.readouterr().out
+    report = json.loads(out.read_text())
+    for key, value in table["stability"]["horizontal"]["computed"].items():
+        assert report["horizontal"]["computed"][key] == (pytest.approx(value, rel=1e-6) if isinstance(value, float) else value)
+
+    assert main(["stability", str(table_path), "--mass-prime", "0.03", "--xg-prime", "0", "--out", str(out)]) == 0
+    criterion = table["Yv"] * table["Nr"] - table["Nv"] * (table["Yr"] - 0.03)
+    assert json.loads(out.read_text())["horizontal"]["computed"]["criterion"] == pytest.approx(criterion, rel=1e-12)
+
+
+def test_stability_names_what_a_table_lacks(tmp_path, capsys):
+    bad = tmp_path / "turns.json"
+    bad.write_text(json.dumps({"Yr": 0.003, "Nr": -0.003, "meta": {"body": "AFF-8"}}))
+    assert main(["stability", str(bad), "--mass-prime", "0.018", "--xg-prime", "0"]) == 2
+    assert "no plane has all four derivatives" in capsys.readouterr().out
+    assert main(["stability", str(bad).replace("turns", "absent")]) == 2
+    assert "no such derivative table" in capsys.readouterr().out
+    anonymous = tmp_path / "anonymous.json"
+    anonymous.write_text(json.dumps({"Yv": -0.02, "meta": {}}))
+    assert main(["stability", str(anonymous)]) == 2
+    assert "names no body" in capsys.readouterr().out

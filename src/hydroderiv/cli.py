@@ -278,15 +278,89 @@ def _derivatives(args: argparse.Namespace) -> int:
                       "-" if row.error_pct is None else f"{row.error_pct:+.1f}",
                       "-" if row.experimental_uncertainty_pct is None else f"{row.experimental_uncertainty_pct:.0f}")
     console.print(table)
+    stability = _print_stability(study, rows)
     out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": body,
             **study.solver.record(), "method": study.method, "conditions": len(results),
             "fit": {"nonlinear": study.nonlinear, "offset": study.fit_offset,
                     **({} if study.max_angle_deg is None else {"max_angle_deg": study.max_angle_deg})}}
-    paths = write_table(rows, out, meta, results)
+    paths = write_table(rows, out, meta, results, stability)
     reference = DERIVATIVES.get(study.body or "", {}).get("values")
     plot = plot_fits(fits, out.with_suffix(".png"), f"{body}, {study.level} mesh, {setup}", reference)
     console.print(f"written: {paths[0]}, {paths[1]}, {plot}")
+    return 0
+
+
+def _print_stability(study, rows) -> dict | None:
+    """Print and return the straight-line stability the table implies (None if no plane has all four
+    derivatives), beside the experiment's from its own derivatives with the same mass."""
+    from .simulation.stability import MassProperties
+
+    mass = MassProperties.neutrally_buoyant(study.workspace.body(study.body, study.body_dir, write=False))
+    return _stability_report({r.name: r.value for r in rows}, {r.name: r.stderr for r in rows}, mass, study.body)
+
+
+def _stability_report(values: dict, stderr: dict, mass, body_key: str | None) -> dict | None:
+    """Print the stability of every plane ``values`` completes, beside the experiment's for ``body_key``
+    (a SUBOFF configuration) with the same mass, and return the report; None if no plane is complete."""
+    from .experiments import DERIVATIVES
+    from .simulation.stability import stability_report
+
+    reference = DERIVATIVES.get(body_key or "", {}).get("values")
+    report = stability_report(values, stderr, mass, reference)
+    planes = [p for p in report if p != "mass"]
+    if not planes:
+        return None
+    table = Table(title=f"straight-line stability, controls fixed (m' = {mass.mass_prime:.5f}, x_G' = {mass.xg_prime:+.5f}: "
+                        f"{mass.source}; stable if C > 0; G = 1 - static lever / damping lever)")
+    for column in ("plane", "C", "G", "std. error", "static lever", "damping lever", "stable",
+                   "experiment G", "exp. static lever", "exp. damping lever"):
+        table.add_column(column, justify="right")
+    for plane in planes:
+        c, e = report[plane]["computed"], report[plane]["experiment"]
+        table.add_row(plane, f"{c['criterion']:+.3e}", f"{c['index']:+.3f}",
+                      "-" if c["index_stderr"] is None else f"{c['index_stderr']:.3f}",
+                      f"{c['static_lever']:+.3f}", f"{c['damping_lever']:+.3f}", "yes" if c["stable"] else "no",
+                      *(("-",) * 3 if e is None else (f"{e['index']:+.3f}", f"{e['static_lever']:+.3f}",
+                                                      f"{e['damping_lever']:+.3f}")))
+    console.print(table)
+    return report
+
+
+def _stability(args: argparse.Namespace) -> int:
+    """The straight-line stability of a committed derivative table, for the table's body trimmed neutrally
+    buoyant or for the mass and centre of gravity a designer gives."""
+    from dataclasses import replace
+
+    from .simulation.stability import PLANES, MassProperties
+
+    path = Path(args.table)
+    table = _read_table(path)
+    details = table.get("details", {})
+    names = [k for plane in PLANES.values() for k in plane]
+    values = {k: table[k] for k in names if isinstance(table.get(k), (int, float))}
+    stderr = {k: details[k]["stderr"] for k in values if isinstance(details.get(k), dict)
+              and isinstance(details[k].get("stderr"), (int, float))}
+    body_key = table.get("meta", {}).get("body")
+    if args.mass_prime is not None and args.xg_prime is not None:
+        mass = MassProperties(args.mass_prime, args.xg_prime, "given on the command line")
+    else:
+        if body_key is None:
+            raise HydroderivError(f"{path}: the table names no body (meta.body); give --mass-prime and --xg-prime")
+        body = suboff_body(body_key) if body_key.upper() in CONFIGURATIONS else Body.read(body_key)
+        mass = MassProperties.neutrally_buoyant(body)
+        if args.mass_prime is not None or args.xg_prime is not None:
+            mass = replace(mass, mass_prime=mass.mass_prime if args.mass_prime is None else args.mass_prime,
+                           xg_prime=mass.xg_prime if args.xg_prime is None else args.xg_prime,
+                           source=f"{mass.source}, with the given " + ("m'" if args.mass_prime is not None else "x_G'"))
+    report = _stability_report(values, stderr, mass, body_key)
+    if report is None:
+        needs = "; ".join(f"{plane}: {', '.join(keys)}" for plane, keys in PLANES.items())
+        raise HydroderivError(f"{path}: no plane has all four derivatives ({needs}); the table has "
+                              f"{', '.join(values) or 'none of them'}")
+    if args.out:
+        atomic_write_text(Path(args.out), json.dumps({"table": str(path), **report}, indent=2) + "\n")
+        console.print(f"written: {args.out}")
     return 0
 
 
@@ -395,6 +469,16 @@ def build_parser() -> argparse.ArgumentParser:
     der.add_argument("--conditions", metavar="TABLE_JSON",
                      help="take the conditions' forces from a derivative table written earlier, not from WORK")
     der.set_defaults(func=_derivatives)
+
+    stab = steps.add_parser("stability", help="straight-line stability (controls fixed) a derivative table implies, "
+                            "beside the experiment's")
+    stab.add_argument("table", metavar="TABLE_JSON", help="a derivative table written by `study run` or `derivatives`")
+    stab.add_argument("--mass-prime", type=float, help="the vehicle's mass m' = m / (0.5 rho L^3) "
+                      "(default: neutrally buoyant, the displaced water's)")
+    stab.add_argument("--xg-prime", type=float, help="its centre of gravity x_G' = x_G / L, forward of the moment centre "
+                      "(default: at the centre of buoyancy)")
+    stab.add_argument("--out", help="JSON output")
+    stab.set_defaults(func=_stability)
 
     conv = steps.add_parser("convergence", help="grid convergence of derivatives over coarse, medium and fine tables, "
                             "with the Richardson estimate and the validation uncertainty")

@@ -180,15 +180,19 @@ def condition_summary(record: dict) -> dict:
     return {key: record.get(key) for key in keys}
 
 
-def write_table(rows: list[DerivativeRow], json_path: str | Path, meta: dict, results: list[dict] = ()) -> tuple[Path, Path]:
-    """JSON (keys Yv, Nv, ... in prime units, plus details, and the conditions' coefficients when ``results``
-    are given) and CSV beside it, both atomic."""
+def write_table(rows: list[DerivativeRow], json_path: str | Path, meta: dict, results: list[dict] = (),
+                stability: dict | None = None) -> tuple[Path, Path]:
+    """JSON (keys Yv, Nv, ... in prime units, plus details, the conditions' coefficients when ``results``
+    are given, and the straight-line ``stability`` the derivatives imply, see :mod:`hydroderiv.simulation`)
+    and CSV beside it, both atomic."""
     json_path = Path(json_path)
     payload = {row.name: row.value for row in rows}
     # NaN (no spare points, or records without a window deviation) is written as null: JSON has no NaN
     payload["details"] = {row.name: {k: None if isinstance(v, float) and np.isnan(v) else v for k, v in row.__dict__.items()}
                           for row in rows}
     payload["meta"] = meta
+    if stability:
+        payload["stability"] = stability
     if results:
         payload["conditions"] = [condition_summary(r) for r in results]
     atomic_write_text(json_path, json.dumps(payload, indent=2) + "\n")

@@ -39,6 +39,14 @@ class TriSurface:
         return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)
 
     @property
+    def centroid(self) -> np.ndarray:
+        """Centre of the enclosed volume (the centre of buoyancy of a closed hull): the volume-weighted mean
+        of the centroids of the tetrahedra each face spans with the origin."""
+        t = self.triangles
+        volumes = np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])) / 6.0
+        return (volumes[:, None] * t.sum(axis=1) / 4.0).sum(axis=0) / volumes.sum()
+
+    @property
     def bounds(self) -> np.ndarray:
         return np.array([self.vertices.min(axis=0), self.vertices.max(axis=0)])
 

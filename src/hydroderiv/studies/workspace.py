@@ -47,12 +47,15 @@ class Workspace:
         folder = "conditions" + (f"-{self.method}" if self.method != "hybrid" else "") + self.solver.folder_suffix
         return self.root / folder / name
 
-    def body(self, config: str | None = None, body_dir: str | Path | None = None) -> Body:
-        """The study's body: a SUBOFF configuration, or a body directory written by `hydroderiv geometry`."""
+    def body(self, config: str | None = None, body_dir: str | Path | None = None, write: bool = True) -> Body:
+        """The study's body: the one written into this workspace, else a SUBOFF configuration or a body
+        directory written by `hydroderiv geometry` (then written here, unless ``write`` is false: reading
+        a committed table's body must not create a work directory)."""
         if (self.geometry_dir / REFERENCE_FILE).is_file():
             return Body.read(self.geometry_dir)
         body = Body.read(body_dir) if body_dir else suboff_body(config or "AFF-8")
-        body.write(self.geometry_dir)
+        if write:
+            body.write(self.geometry_dir)
         return body
 
     def mesh(self, body: Body, log: Callable[[str], None] = print, n_procs: int = 1) -> dict:

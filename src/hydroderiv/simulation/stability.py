@@ -1,0 +1,163 @@
+"""Straight-line dynamic stability of the vehicle from its derivative table, controls fixed.
+
+The first thing a designer does with Y'v, N'v, Y'r, N'r (and Z'w, M'w, Z'q, M'q) is ask whether the
+vehicle keeps a straight course when disturbed. Linearised about straight motion at speed U, the
+Gertler & Hagen (1967) equations in the prime system on L are, in the horizontal plane (body axes: x
+forward, y starboard, z down; origin at the moment centre B; centre of gravity at x_G on the axis)
+
+    (m' - Y'v.) v'. + (m' x_G' - Y'r.) r'.  =  Y'v v' + (Y'r - m') r'
+    (m' x_G' - N'v.) v'. + (I'z - N'r.) r'.  =  N'v v' + (N'r - m' x_G') r'
+
+and in the vertical plane (q > 0 nose up)
+
+    (m' - Z'w.) w'. - (m' x_G' + Z'q.) q'.  =  Z'w w' + (Z'q + m') q'
+    -(m' x_G' + M'w.) w'. + (I'y - M'q.) q'.  =  M'w w' + (M'q - m' x_G') q'
+
+where m' = m / (0.5 rho L^3) and x_G' = x_G / L. The m' terms on the right are the centripetal
+acceleration m u r (and m u q) of the body itself, which the hydrodynamic force must supply in a turn.
+Written M x. = K x with the mass matrix M (body plus added mass) positive definite, the product of the
+eigenvalues is det K / det M, so a negative det K means two real roots of opposite sign, one of them
+positive: a disturbance grows without oscillation (the vehicle turns away on its own), whatever the
+acceleration derivatives, which the steady captive tests do not measure. A positive det K leaves both roots
+stable while the trace of M^-1 K is negative, as it is with the usual signs (Y'v, N'r, Z'w, M'q negative)
+and a mass matrix dominated by its diagonal. Hence the stability criteria (e.g. Renilson, *Submarine
+Hydrodynamics*, 2nd ed., 2018):
+
+    C_H = Y'v (N'r - m' x_G') - N'v (Y'r - m')          stable if C_H > 0
+    G_H = 1 - N'v (Y'r - m') / (Y'v (N'r - m' x_G'))     = C_H / (Y'v (N'r - m' x_G'))
+        = 1 - l'_v / l'_r,   l'_v = N'v / Y'v,   l'_r = (N'r - m' x_G') / (Y'r - m')
+
+and the vertical-plane C_V, G_V with Z'w, M'w, Z'q + m', M'q - m' x_G' and the levers
+l'_w = -M'w / Z'w, l'_q = -(M'q - m' x_G') / (Z'q + m'). l'_v (l'_w) is where the sway (heave) force acts,
+forward of B; l'_r (l'_q) is the lever of the damping in yaw (pitch): the vehicle is stable when the
+damping lever is the longer. G_V neglects the hydrostatic restoring moment of the metacentric height, which
+fades as 1/U^2 and is not a hydrodynamic derivative. The stability index is what the derivatives' errors
+mean for a designer: a few per cent in Y'r moves l'_r, and with it G_H, by much more when m' - Y'r is small.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass
+from typing import Mapping
+
+import numpy as np
+
+from ..errors import ConfigurationError
+from ..geometry import Body
+
+# plane -> (force and moment per velocity, force and moment per rate), in the order of the formulas above
+PLANES = {"horizontal": ("Yv", "Nv", "Yr", "Nr"), "vertical": ("Zw", "Mw", "Zq", "Mq")}
+
+
+@dataclass(frozen=True)
+class MassProperties:
+    """The rigid body's mass and centre of gravity in the prime system (m' = m / (0.5 rho L^3), x_G' = x_G / L)."""
+
+    mass_prime: float
+    xg_prime: float
+    source: str
+
+    def __post_init__(self):
+        if not np.isfinite(self.mass_prime) or self.mass_prime <= 0:
+            raise ConfigurationError(f"the vehicle's mass m' must be positive, not {self.mass_prime}")
+        if not np.isfinite(self.xg_prime):
+            raise ConfigurationError(f"the centre of gravity x_G' must be finite, not {self.xg_prime}")
+
+    @classmethod
+    def neutrally_buoyant(cls, body: Body) -> MassProperties:
+        """A vehicle trimmed to neutral buoyancy: its mass is the displaced water's, rho times the hull's
+        volume, and its centre of gravity lies at the centre of buoyancy (the volume's centroid), as a
+        submerged vehicle on a level course needs. So m' = 2 V / L^3."""
+        length = body.reference.length
+        return cls(mass_prime=2.0 * body.reference.volume / length**3,
+                   xg_prime=float(body.surface.centroid[0]) / length,
+                   source=f"neutrally buoyant {body.name}: mass of the displaced water "
+                          f"({body.reference.volume:.5f} m^3), centre of gravity at the centre of buoyancy")
+
+
+@dataclass(frozen=True)
+class PlaneStability:
+    """Straight-line stability in one plane (see the module docstring for the formulas)."""
+
+    plane: str
+    criterion: float  # C_H or C_V: > 0 stable
+    index: float  # G_H or G_V = 1 - static lever / damping lever
+    static_lever: float  # l'_v or l'_w: where the force per velocity acts, in L forward of the moment centre
+    damping_lever: float  # l'_r or l'_q
+    index_stderr: float | None  # from the derivatives' standard errors (independent, first order); None if not given
+
+    @property
+    def stable(self) -> bool:
+        return self.criterion > 0
+
+    def as_dict(self) -> dict:
+        return {**asdict(self), "stable": self.stable}
+
+
+def stiffness_matrix(derivatives: Mapping[str, float], plane: str, mass: MassProperties) -> np.ndarray:
+    """K of M x. = K x in ``plane`` for x = (v', r') or (w', q'): the hydrodynamic derivatives with the
+    body's own centripetal terms."""
+    force_velocity, moment_velocity, force_rate, moment_rate = (derivatives[k] for k in _names(plane))
+    m, xg = mass.mass_prime, mass.xg_prime
+    # the body's centripetal force enters the yaw plane as -m' r' and the pitch plane as +m' q' (q > 0 nose up)
+    sign = -1.0 if plane == "horizontal" else 1.0
+    return np.array([[force_velocity, force_rate + sign * m], [moment_velocity, moment_rate - m * xg]])
+
+
+def _names(plane: str) -> tuple[str, ...]:
+    if plane not in PLANES:
+        raise ConfigurationError(f"unknown plane {plane!r}; choose one of {', '.join(PLANES)}")
+    return PLANES[plane]
+
+
+def _criterion_index_levers(derivatives: Mapping[str, float], plane: str, mass: MassProperties):
+    (a, b), (c, d) = stiffness_matrix(derivatives, plane, mass)
+    criterion = a * d - c * b
+    # levers: where the force per velocity acts (N = x Y in yaw, M = -x Z in pitch) and the damping's lever
+    orientation = 1.0 if plane == "horizontal" else -1.0
+    static_lever = orientation * c / a
+    damping_lever = orientation * d / b
+    return criterion, criterion / (a * d), static_lever, damping_lever
+
+
+def plane_stability(derivatives: Mapping[str, float], plane: str, mass: MassProperties,
+                    stderr: Mapping[str, float] | None = None) -> PlaneStability:
+    """The stability criterion, index and levers of ``plane`` from ``derivatives`` (prime units, keys as in
+    the derivative table). ``stderr`` (the same keys) carries the fits' standard errors to the index."""
+    names = _names(plane)
+    missing = [k for k in names if k not in derivatives]
+    if missing:
+        raise ConfigurationError(f"the {plane} plane needs {', '.join(names)}; the table lacks {', '.join(missing)}")
+    values = {k: float(derivatives[k]) for k in names}
+    criterion, index, static_lever, damping_lever = _criterion_index_levers(values, plane, mass)
+    index_stderr = None
+    if stderr is not None and all(k in stderr and np.isfinite(stderr[k]) for k in names):
+        # first-order propagation, the derivatives taken as independent; central differences on each
+        variance = 0.0
+        for k in names:
+            step = 1e-6 * max(abs(values[k]), 1e-9)
+            up, down = dict(values), dict(values)
+            up[k] += step
+            down[k] -= step
+            slope = (_criterion_index_levers(up, plane, mass)[1] - _criterion_index_levers(down, plane, mass)[1]) / (2 * step)
+            variance += (slope * float(stderr[k])) ** 2
+        index_stderr = float(np.sqrt(variance))
+    return PlaneStability(plane, float(criterion), float(index), float(static_lever), float(damping_lever), index_stderr)
+
+
+def stability(derivatives: Mapping[str, float], mass: MassProperties,
+              stderr: Mapping[str, float] | None = None) -> dict[str, PlaneStability]:
+    """Every plane whose four derivatives ``derivatives`` holds."""
+    return {plane: plane_stability(derivatives, plane, mass, stderr)
+            for plane, names in PLANES.items() if all(k in derivatives for k in names)}
+
+
+def stability_report(values: Mapping[str, float], stderr: Mapping[str, float], mass: MassProperties,
+                     reference: Mapping[str, float] | None = None) -> dict:
+    """What a derivative table records: the mass properties, and per plane the computed stability beside
+    the experiment's, from its own derivatives with the same mass (None where they were not all measured)."""
+    computed = stability(values, mass, stderr)
+    measured = stability(reference or {}, mass)
+    return {"mass": asdict(mass),
+            **{plane: {"computed": s.as_dict(), "experiment": measured[plane].as_dict() if plane in measured else None}
+               for plane, s in computed.items()}}

@@ -1,0 +1,176 @@
+"""Straight-line stability from the derivative table: the criterion against the eigenvalues of the
+linearised equations of motion, the two planes against each other, and the committed tables."""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from hydroderiv.case import Condition
+from hydroderiv.derivatives.table import derivative_table, write_table
+from hydroderiv.errors import ConfigurationError
+from hydroderiv.experiments import DERIVATIVES
+from hydroderiv.simulation import MassProperties, plane_stability, stability
+from hydroderiv.simulation.stability import PLANES, stability_report, stiffness_matrix
+
+ROOT = Path(__file__).parent.parent.parent
+SUBOFF_MASS = MassProperties(mass_prime=0.01825, xg_prime=0.0008, source="test")
+
+
+def random_plane(rng):
+    """Derivatives of the usual signs and sizes for a submarine (prime units), drawn at random."""
+    return {"force_velocity": -rng.uniform(0.005, 0.05), "moment_velocity": rng.uniform(-0.02, 0.01),
+            "force_rate": rng.uniform(-0.01, 0.01), "moment_rate": -rng.uniform(0.001, 0.01)}
+
+
+def as_plane(plane, d):
+    return dict(zip(PLANES[plane], (d["force_velocity"], d["moment_velocity"], d["force_rate"], d["moment_rate"])))
+
+
+def random_mass_matrix(rng, mass_prime):
+    """Body plus added mass: symmetric positive definite, diagonal of the right size, coupled at random."""
+    m11 = mass_prime * rng.uniform(1.2, 2.5)
+    m22 = 0.001 * rng.uniform(0.3, 2.0)  # I' plus the added moment of inertia
+    m12 = rng.uniform(-0.9, 0.9) * np.sqrt(m11 * m22)
+    return np.array([[m11, m12], [m12, m22]])
+
+
+@pytest.mark.parametrize("plane", list(PLANES))
+def test_a_negative_criterion_is_a_divergent_root_whatever_the_added_mass(plane):
+    """M x. = K x: det K < 0 gives exactly one real positive eigenvalue for any positive-definite M; with
+    det K > 0 and a negative trace of M^-1 K every root decays. The criterion needs no acceleration derivative."""
+    rng = np.random.default_rng(7)
+    unstable = stable = 0
+    for _ in range(400):
+        derivatives = as_plane(plane, random_plane(rng))
+        mass = MassProperties(rng.uniform(0.01, 0.03), rng.uniform(-0.02, 0.02), "random")
+        result = plane_stability(derivatives, plane, mass)
+        system = np.linalg.solve(random_mass_matrix(rng, mass.mass_prime), stiffness_matrix(derivatives, plane, mass))
+        roots = np.linalg.eigvals(system)
+        if result.criterion < 0:
+            unstable += 1
+            assert not result.stable
+            positive = [r for r in roots if abs(r.imag) < 1e-12 and r.real > 0]
+            assert len(positive) == 1
+        elif np.trace(system) < 0:
+            stable += 1
+            assert result.stable and np.all(roots.real < 0)
+    assert unstable > 50 and stable > 50  # both sides were exercised
+
+
+@pytest.mark.parametrize("plane", list(PLANES))
+def test_index_is_one_less_the_ratio_of_the_levers(plane):
+    rng = np.random.default_rng(3)
+    derivatives = as_plane(plane, random_plane(rng))
+    s = plane_stability(derivatives, plane, SUBOFF_MASS)
+    (a, b), (c, d) = stiffness_matrix(derivatives, plane, SUBOFF_MASS)
+    assert s.index == pytest.approx(1 - s.static_lever / s.damping_lever, rel=1e-12)
+    assert s.index == pytest.approx(s.criterion / (a * d), rel=1e-12)
+    # the static lever is where the force per velocity acts: N = x Y in yaw, M = -x Z in pitch
+    force, moment = derivatives[PLANES[plane][0]], derivatives[PLANES[plane][1]]
+    assert s.static_lever == pytest.approx(moment / force if plane == "horizontal" else -moment / force)
+
+
+def test_a_body_turned_by_90_degrees_has_the_same_stability_in_the_other_plane():
+    """Turn an axisymmetric body about its axis and its yaw plane becomes its pitch plane, with the signs
+    of body axes (z down, q > 0 nose up): Z'w = Y'v, M'w = -N'v, Z'q = -Y'r, M'q = N'r. Its stability must not
+    change: this checks the vertical plane's formulas (where m' enters with the other sign) against the
+    horizontal one's."""
+    yaw = DERIVATIVES["AFF-3"]["values"]
+    pitch = {"Zw": yaw["Yv"], "Mw": -yaw["Nv"], "Zq": -yaw["Yr"], "Mq": yaw["Nr"]}
+    result = stability({**yaw, **pitch}, SUBOFF_MASS)
+    h, v = result["horizontal"], result["vertical"]
+    for key in ("criterion", "index", "static_lever", "damping_lever"):
+        assert getattr(v, key) == pytest.approx(getattr(h, key), rel=1e-12)
+
+
+def test_the_index_uncertainty_is_the_spread_of_the_index_over_the_derivatives_uncertainty():
+    """First-order propagation of independent standard errors against a Monte Carlo draw."""
+    values = DERIVATIVES["AFF-8"]["values"]
+    stderr = {k: 0.01 * abs(values[k]) for k in PLANES["horizontal"]}
+    s = plane_stability(values, "horizontal", SUBOFF_MASS, stderr)
+    rng = np.random.default_rng(11)
+    draws = [plane_stability({k: values[k] + rng.normal(0, stderr[k]) for k in stderr}, "horizontal", SUBOFF_MASS).index
+             for _ in range(4000)]
+    assert s.index_stderr == pytest.approx(np.std(draws), rel=0.06)
+    assert plane_stability(values, "horizontal", SUBOFF_MASS).index_stderr is None  # none given, none claimed
+    assert plane_stability(values, "horizontal", SUBOFF_MASS, {**stderr, "Yr": np.nan}).index_stderr is None
+
+
+def test_a_plane_without_all_its_derivatives_is_named_or_left_out():
+    values = {"Yv": -0.0278, "Nv": -0.0135, "Yr": 0.00325}
+    with pytest.raises(ConfigurationError, match="lacks Nr"):
+        plane_stability(values, "horizontal", SUBOFF_MASS)
+    assert stability(values, SUBOFF_MASS) == {}
+    with pytest.raises(ConfigurationError, match="unknown plane"):
+        plane_stability(values, "diagonal", SUBOFF_MASS)
+    with pytest.raises(ConfigurationError, match="mass m' must be positive"):
+        MassProperties(0.0, 0.0, "empty")
+
+
+def test_neutral_buoyancy_takes_the_displaced_water_and_the_centre_of_buoyancy(suboff):
+    body = suboff("AFF-1")
+    mass = MassProperties.neutrally_buoyant(body)
+    assert mass.mass_prime == pytest.approx(2 * 0.6992 / 4.261**3, rel=0.002)
+    # Groves et al.: centre of buoyancy 2.0086 m aft of the nose, the moment centre 2.013 m
+    assert mass.xg_prime * 4.261 == pytest.approx(2.013 - 2.0086, abs=1e-3)
+
+
+def yaw_plane_results(yv=-0.0278, nv=-0.0135, yr=0.00325, nr=-0.00372):
+    """Condition records of a drift and a turn sweep with linear loads (what a study's result.json holds)."""
+    records = []
+    for drift, rate in [(b, 0.0) for b in (-4, 0, 4)] + [(0, r) for r in (-0.2, -0.1, 0.1, 0.2)]:
+        c = Condition(3.344, drift_deg=drift, yaw_rate_prime=rate)
+        u, v, _ = c.body_velocity() / c.speed
+        loads = dict.fromkeys("XYZKMN", 0.0)
+        loads.update(Y=yv * u * v + yr * rate, N=nv * u * v + nr * rate)
+        records.append({"condition": c.__dict__, "coefficients": loads})
+    return records
+
+
+def test_the_table_records_the_stability_beside_the_experiments(tmp_path):
+    rows = derivative_table(yaw_plane_results(), reference_key="AFF-8")
+    values = {r.name: r.value for r in rows}
+    report = stability_report(values, {r.name: r.stderr for r in rows}, SUBOFF_MASS, DERIVATIVES["AFF-8"]["values"])
+    assert set(report) == {"mass", "horizontal"}  # no pitch sweeps in the synthetic study
+    assert report["horizontal"]["computed"]["index"] == pytest.approx(
+        plane_stability(values, "horizontal", SUBOFF_MASS).index, rel=1e-12)
+    measured = plane_stability(DERIVATIVES["AFF-8"]["values"], "horizontal", SUBOFF_MASS)
+    assert report["horizontal"]["experiment"]["index"] == pytest.approx(measured.index, rel=1e-12)
+    json_path, _ = write_table(rows, tmp_path / "d.json", {"level": "x"}, stability=report)
+    assert json.loads(json_path.read_text())["stability"]["horizontal"]["experiment"]["stable"] is measured.stable
+
+
+@pytest.mark.parametrize("config", ["AFF-8", "AFF-3"])
+def test_the_committed_tables_of_record_carry_the_stability_of_their_own_derivatives(config):
+    """The stability a medium table of record holds is what its own derivatives, standard errors and mass
+    give (so a refit cannot leave it stale), the experiment's is Roddy's derivatives with the same mass, and
+    the computed table reaches the experiment's verdict: SUBOFF is unstable in the horizontal plane, controls
+    fixed, because the static lever is longer than the damping lever."""
+    table = json.loads((ROOT / f"validation/derivatives-{config}-medium.json").read_text())
+    recorded = table["stability"]
+    mass = MassProperties(**recorded["mass"])
+    stderr = {k: v["stderr"] for k, v in table["details"].items()}
+    for plane in PLANES:
+        if not all(k in table for k in PLANES[plane]):
+            assert plane not in recorded
+            continue
+        computed = plane_stability(table, plane, mass, stderr).as_dict()
+        for key, value in recorded[plane]["computed"].items():
+            assert computed[key] == (pytest.approx(value, rel=1e-9) if isinstance(value, float) else value)
+    horizontal = recorded["horizontal"]
+    measured = plane_stability(DERIVATIVES[config]["values"], "horizontal", mass)
+    assert horizontal["experiment"]["index"] == pytest.approx(measured.index, rel=1e-9)
+    assert horizontal["computed"]["stable"] is measured.stable is False
+    assert horizontal["computed"]["static_lever"] > horizontal["computed"]["damping_lever"] > 0
+
+
+def test_the_sail_edge_on_leaves_the_vertical_plane_of_aff8_that_of_aff3_in_yaw():
+    """AFF-8's vertical plane (hull and cruciform stern, the sail edge-on to w and q) repeats AFF-3's
+    horizontal plane, on two different meshes, to 5 % in the stability index."""
+    def recorded(config):
+        return json.loads((ROOT / f"validation/derivatives-{config}-medium.json").read_text())["stability"]
+
+    assert recorded("AFF-8")["vertical"]["computed"]["index"] == pytest.approx(
+        recorded("AFF-3")["horizontal"]["computed"]["index"], rel=0.05)
