@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import argparse
 import json
+import math
 import signal
 import sys
 from pathlib import Path
@@ -263,11 +264,13 @@ def _derivatives(args: argparse.Namespace) -> int:
     setup = study.solver.turbulence_model + (", classic rotating domain" if study.method == "classic" else "")
     table = Table(title=f"derivatives, {body} on the {study.level} mesh, {setup} "
                         "(prime units, L-based)")
-    for column in ("derivative", "fit", "std. error", "iterative", "single-point", "single-point by magnitude", "points",
-                   "experiment", "error (%)", "exp. unc. (%)"):
+    for column in ("derivative", "fit", "std. error", "iterative", "fit forms (%)", "single-point",
+                   "single-point by magnitude", "points", "experiment", "error (%)", "exp. unc. (%)"):
         table.add_column(column, justify="right")
     for row in rows:
         table.add_row(row.name, f"{row.value:+.5f}", f"{row.stderr:.1e}", f"{row.iterative_stderr:.1e}",
+                      # the spread of the slope over the fit forms the points can carry, relative to the slope
+                      "-" if math.isnan(row.form_spread) else f"{100 * row.form_spread / abs(row.value):.1f}",
                       f"{row.single_point:+.5f}",
                       "  ".join(f"{k}: {v:+.5f}" for k, v in row.single_point_by_magnitude.items()),
                       # a sweep at one magnitude is fitted without the table's nonlinear term, and a fit with

@@ -153,6 +153,31 @@ def test_a_sweep_at_one_magnitude_is_fitted_without_the_nonlinear_term_not_dropp
     assert rows["Nr"].spare_magnitudes == 0  # one pair for one slope: the fit passes through it
 
 
+def test_each_fit_form_gives_its_own_slope_and_the_spread_between_them_is_reported(tmp_path):
+    """Turns at r' = +-0.1, 0.2, 0.3 with N' = Nr r' + Nrr r'|r'|: the x|x| form recovers Nr exactly, a
+    straight line through the same points returns Nr + Nrr sum(r'^2 |r'|) / sum(r'^2) (its least-squares
+    slope), and the cubic form lies between; a sweep without curvature gives every form the same slope."""
+    nr, nrr = -0.0030, -0.0020
+    rates = (-0.3, -0.2, -0.1, 0.0, 0.1, 0.2, 0.3)
+    results = [record(Condition(3.344, yaw_rate_prime=r), Y=0.005 * r, N=nr * r + nrr * r * abs(r)) for r in rates]
+    rows = {r.name: r for r in derivative_table(results, nonlinear="abs")}
+    forms = rows["Nr"].slope_by_form
+    assert set(forms) == {"abs", "cubic", "none"}
+    assert forms["abs"] == pytest.approx(nr, rel=1e-9) == rows["Nr"].value
+    straight = nr + nrr * sum(r * r * abs(r) for r in rates) / sum(r * r for r in rates)
+    assert forms["none"] == pytest.approx(straight, rel=1e-9)
+    assert forms["none"] < forms["cubic"] < forms["abs"]
+    assert rows["Nr"].form_spread == pytest.approx(forms["abs"] - forms["none"], rel=1e-9)
+    assert rows["Yr"].form_spread == pytest.approx(0.0, abs=1e-12)
+    # a pair at one magnitude carries only the straight line: no spread to report
+    pair = [r for r in results if abs(r["condition"]["yaw_rate_prime"]) in (0.0, 0.1)]
+    assert np.isnan(derivative_table(pair)[1].form_spread)
+    json_path, csv_path = write_table(list(rows.values()), tmp_path / "t.json", {})
+    details = json.loads(json_path.read_text())["details"]["Nr"]
+    assert details["form_spread"] == pytest.approx(rows["Nr"].form_spread) and details["slope_by_form"] == forms
+    assert "form_spread" in csv_path.read_text().splitlines()[0]
+
+
 def test_the_tables_of_record_repeat_a_yaw_turn_as_a_pitch_turn_turned_by_90_degrees():
     """A pitch turn of AFF-8 meets its sail edge-on, so it sees what a yaw turn of AFF-3 (the same hull and
     cruciform stern) sees turned by 90 degrees about the axis: Z'q = -Y'r and M'q = N'r, at every rate. The two

@@ -30,7 +30,7 @@ from ..case.conditions import SWEEP_KEYS
 from ..errors import ConfigurationError
 from ..experiments import DERIVATIVES, DERIVATIVE_UNCERTAINTY
 from ..forces import COEFFICIENT_NAMES
-from .fit import DerivativeFit
+from .fit import NONLINEAR_TERMS, DerivativeFit
 
 # derivative -> (sweep variable of Condition, force coefficient, static or rotary)
 DEFINITIONS = {
@@ -74,6 +74,15 @@ class DerivativeRow:
     nonlinear_term: str = "abs"  # the fit's nonlinear term: the table's, or "none" for a sweep at one magnitude
     # magnitudes beyond the fit's odd terms; at 0 the slope passes through the points (see DerivativeFit)
     spare_magnitudes: int | None = None
+    # the slope with each nonlinear term the fitted points can carry ('abs', 'cubic', 'none'), the table's
+    # included: how much the derivative depends on the form of the curve assumed beyond the origin
+    slope_by_form: dict[str, float] | None = None
+
+    @property
+    def form_spread(self) -> float:
+        """Largest less smallest slope over the fit forms (NaN with one form)."""
+        slopes = list((self.slope_by_form or {}).values())
+        return max(slopes) - min(slopes) if len(slopes) > 1 else float("nan")
 
 
 @dataclass
@@ -153,6 +162,7 @@ def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> l
         magnitudes = np.abs(sweep.sweep_values[nonzero])
         by_magnitude = {f"{m:g}": float(np.mean(singles[magnitudes == m])) for m in np.unique(magnitudes)}
         ref = reference.get(name)
+        slope_by_form = _slope_by_form(sweep)
         rows.append(
             DerivativeRow(
                 name=name,
@@ -169,9 +179,24 @@ def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> l
                 experimental_uncertainty_pct=None if ref is None else 100.0 * DERIVATIVE_UNCERTAINTY[kind],
                 nonlinear_term=fit.nonlinear,
                 spare_magnitudes=fit.spare_magnitudes_,
+                slope_by_form=slope_by_form,
             )
         )
     return rows
+
+
+def _slope_by_form(sweep: SweepFit) -> dict[str, float]:
+    """The slope at the origin of the sweep's fitted points with every nonlinear term they can carry. Where
+    the loads curve, a slope-plus-x|x| fit, a slope-plus-x^3 fit and a straight line through the same points
+    differ: the straight line returns the mean slope over the tested range (what a linear manoeuvring model
+    used over that range needs), the other two extrapolate the curvature to the origin."""
+    x, y = sweep.xs[sweep.in_fit], sweep.ys[sweep.in_fit]
+    slopes = {}
+    for form in NONLINEAR_TERMS:
+        estimator = DerivativeFit(nonlinear=form, fit_offset=sweep.fit.fit_offset)
+        if estimator.has_enough_magnitudes(x):
+            slopes[form] = estimator.fit(x, y).slope_
+    return slopes
 
 
 def condition_summary(record: dict) -> dict:
@@ -188,7 +213,8 @@ def write_table(rows: list[DerivativeRow], json_path: str | Path, meta: dict, re
     json_path = Path(json_path)
     payload = {row.name: row.value for row in rows}
     # NaN (no spare points, or records without a window deviation) is written as null: JSON has no NaN
-    payload["details"] = {row.name: {k: None if isinstance(v, float) and np.isnan(v) else v for k, v in row.__dict__.items()}
+    payload["details"] = {row.name: {k: None if isinstance(v, float) and np.isnan(v) else v
+                                     for k, v in {**row.__dict__, "form_spread": row.form_spread}.items()}
                           for row in rows}
     payload["meta"] = meta
     if stability:
@@ -198,10 +224,10 @@ def write_table(rows: list[DerivativeRow], json_path: str | Path, meta: dict, re
     atomic_write_text(json_path, json.dumps(payload, indent=2) + "\n")
     buffer = io.StringIO()
     writer = csv.writer(buffer)
-    columns = list(DerivativeRow.__dataclass_fields__)
+    columns = [*DerivativeRow.__dataclass_fields__, "form_spread"]
     writer.writerow(columns)
     for row in rows:
-        # the per-magnitude single points go in one cell, "4:-0.0232 8:-0.0291"
+        # the per-magnitude single points (and the slopes per fit form) go in one cell, "4:-0.0232 8:-0.0291"
         writer.writerow([" ".join(f"{k}:{v:.6g}" for k, v in value.items()) if isinstance(value, dict) else value
                          for value in (getattr(row, c) for c in columns)])
     csv_path = json_path.with_suffix(".csv")
