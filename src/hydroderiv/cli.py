@@ -270,7 +270,7 @@ def _derivatives(args: argparse.Namespace) -> int:
     for row in rows:
         table.add_row(row.name, f"{row.value:+.5f}", f"{row.stderr:.1e}", f"{row.iterative_stderr:.1e}",
                       # the spread of the slope over the fit forms the points can carry, relative to the slope
-                      "-" if math.isnan(row.form_spread) else f"{100 * row.form_spread / abs(row.value):.1f}",
+                      "-" if math.isnan(row.form_spread) or row.value == 0 else f"{100 * row.form_spread / abs(row.value):.1f}",
                       f"{row.single_point:+.5f}",
                       "  ".join(f"{k}: {v:+.5f}" for k, v in row.single_point_by_magnitude.items()),
                       # a sweep at one magnitude is fitted without the table's nonlinear term, and a fit with
