@@ -172,6 +172,9 @@ def test_each_fit_form_gives_its_own_slope_and_the_spread_between_them_is_report
     # a pair at one magnitude carries only the straight line: no spread to report
     pair = [r for r in results if abs(r["condition"]["yaw_rate_prime"]) in (0.0, 0.1)]
     assert np.isnan(derivative_table(pair)[1].form_spread)
+    # two one-sided turns carry a straight line with an offset but no third term: the table still comes out
+    one_sided = [r for r in results if r["condition"]["yaw_rate_prime"] in (0.1, 0.2)]
+    assert set(derivative_table(one_sided, nonlinear="none")[1].slope_by_form) == {"none"}
     json_path, csv_path = write_table(list(rows.values()), tmp_path / "t.json", {})
     details = json.loads(json_path.read_text())["details"]["Nr"]
     assert details["form_spread"] == pytest.approx(rows["Nr"].form_spread) and details["slope_by_form"] == forms

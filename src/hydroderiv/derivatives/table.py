@@ -194,8 +194,12 @@ def _slope_by_form(sweep: SweepFit) -> dict[str, float]:
     slopes = {}
     for form in NONLINEAR_TERMS:
         estimator = DerivativeFit(nonlinear=form, fit_offset=sweep.fit.fit_offset)
-        if estimator.has_enough_magnitudes(x):
+        if not estimator.has_enough_magnitudes(x):
+            continue
+        try:
             slopes[form] = estimator.fit(x, y).slope_
+        except ConfigurationError:
+            continue  # too few points for this form's terms (a one-sided sweep): the table's own form still fits
     return slopes
 
 
