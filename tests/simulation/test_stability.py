@@ -166,7 +166,7 @@ def test_the_committed_tables_of_record_carry_the_stability_of_their_own_derivat
     assert horizontal["computed"]["static_lever"] > horizontal["computed"]["damping_lever"] > 0
 
 
-def test_the_sail_edge_on_leaves_the_vertical_plane_of_aff8_that_of_aff3_in_yaw():
+def test_aff8_in_pitch_is_as_unstable_as_aff3_in_yaw_with_the_sail_edge_on():
     """AFF-8's vertical plane (hull and cruciform stern, the sail edge-on to w and q) repeats AFF-3's
     horizontal plane, on two different meshes, to 5 % in the stability index."""
     def recorded(config):
