@@ -32,19 +32,22 @@ class TriSurface:
     def area(self) -> float:
         return float(0.5 * np.linalg.norm(self.face_normals_area, axis=1).sum())
 
+    def _signed_tetrahedron_volumes(self) -> np.ndarray:
+        """Signed volume of the tetrahedron each face spans with the origin (positive for outward normals)."""
+        t = self.triangles
+        return np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])) / 6.0
+
     @property
     def volume(self) -> float:
         """Enclosed volume by the divergence theorem (positive for outward normals)."""
-        t = self.triangles
-        return float(np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])).sum() / 6.0)
+        return float(self._signed_tetrahedron_volumes().sum())
 
     @property
     def centroid(self) -> np.ndarray:
         """Centre of the enclosed volume (the centre of buoyancy of a closed hull): the volume-weighted mean
         of the centroids of the tetrahedra each face spans with the origin."""
-        t = self.triangles
-        volumes = np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2])) / 6.0
-        return (volumes[:, None] * t.sum(axis=1) / 4.0).sum(axis=0) / volumes.sum()
+        volumes = self._signed_tetrahedron_volumes()
+        return (volumes[:, None] * self.triangles.sum(axis=1) / 4.0).sum(axis=0) / volumes.sum()
 
     @property
     def bounds(self) -> np.ndarray:
