@@ -193,13 +193,11 @@ def _slope_by_form(sweep: SweepFit) -> dict[str, float]:
     x, y = sweep.xs[sweep.in_fit], sweep.ys[sweep.in_fit]
     slopes = {}
     for form in NONLINEAR_TERMS:
-        estimator = DerivativeFit(nonlinear=form, fit_offset=sweep.fit.fit_offset)
-        if not estimator.has_enough_magnitudes(x):
-            continue
         try:
-            slopes[form] = estimator.fit(x, y).slope_
+            slopes[form] = DerivativeFit(nonlinear=form, fit_offset=sweep.fit.fit_offset).fit(x, y).slope_
         except ConfigurationError:
-            continue  # too few points for this form's terms (a one-sided sweep): the table's own form still fits
+            # too few magnitudes or points for this form's terms (one pair, a one-sided sweep): leave it out
+            continue
     return slopes
 
 
