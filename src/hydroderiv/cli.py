@@ -244,7 +244,7 @@ def _conditions_of_table(path: Path) -> list[dict]:
 
 
 def _derivatives(args: argparse.Namespace) -> int:
-    from .derivatives.table import fit_sweeps, table_rows, write_table
+    from .derivatives.table import derivatives_by_part, fit_parts, fit_sweeps, table_rows, write_table
     from .experiments import DERIVATIVES
     from .report.derivatives import plot_fits
     from .run.condition import read_result
@@ -281,17 +281,36 @@ def _derivatives(args: argparse.Namespace) -> int:
                       "-" if row.error_pct is None else f"{row.error_pct:+.1f}",
                       "-" if row.experimental_uncertainty_pct is None else f"{row.experimental_uncertainty_pct:.0f}")
     console.print(table)
+    by_part = derivatives_by_part(fit_parts(results, study.nonlinear, study.fit_offset, study.max_angle_deg))
+    _print_by_part(by_part, {row.name: row.value for row in rows})
     stability = _print_stability(study, rows)
     out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": body,
             **study.solver.record(), "method": study.method, "conditions": len(results),
             "fit": {"nonlinear": study.nonlinear, "offset": study.fit_offset,
                     **({} if study.max_angle_deg is None else {"max_angle_deg": study.max_angle_deg})}}
-    paths = write_table(rows, out, meta, results, stability)
+    paths = write_table(rows, out, meta, results, stability, by_part)
     reference = DERIVATIVES.get(study.body or "", {}).get("values")
     plot = plot_fits(fits, out.with_suffix(".png"), f"{body}, {study.level} mesh, {setup}", reference)
     console.print(f"written: {paths[0]}, {paths[1]}, {plot}")
     return 0
+
+
+def _print_by_part(by_part: dict[str, dict[str, float]], totals: dict[str, float]) -> None:
+    """Each body part's contribution to each derivative, and its share of the body's (nothing for records
+    without per-part loads, such as tables written before they were kept)."""
+    if not by_part:
+        return
+    parts = list(next(iter(by_part.values())))
+    table = Table(title="by body part: each part's contribution (its share of the body's derivative, %)")
+    table.add_column("derivative", justify="right")
+    for part in parts:
+        table.add_column(part, justify="right")
+    for name, contributions in by_part.items():
+        total = totals[name]
+        table.add_row(name, *(f"{contributions[p]:+.5f} ({100 * contributions[p] / total:.0f})" if total
+                              else f"{contributions[p]:+.5f}" for p in parts))
+    console.print(table)
 
 
 def _print_stability(study, rows) -> dict | None:

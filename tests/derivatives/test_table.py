@@ -6,7 +6,8 @@ import numpy as np
 import pytest
 
 from hydroderiv.case import Condition
-from hydroderiv.derivatives.table import derivative_table, write_table
+from hydroderiv.derivatives.table import (body_parts, derivative_table, derivatives_by_part, fit_parts,
+                                          write_table)
 from hydroderiv.errors import ConfigurationError
 
 
@@ -197,3 +198,67 @@ def test_the_tables_of_record_repeat_a_yaw_turn_as_a_pitch_turn_turned_by_90_deg
         assert set(by_rate) == {"0.1", "0.2", "0.3"}
         for rate, value in by_rate.items():
             assert value == pytest.approx(sign * aff3["details"][yaw]["single_point_by_magnitude"][rate], rel=0.04)
+
+
+def test_each_parts_derivatives_add_up_to_the_bodys_and_travel_with_the_table(tmp_path):
+    """A hull with curved loads and a fin whose load is linear: each part's fit returns its own slope (the fin's
+    exactly, since its load has no nonlinear term), and the parts add up to the body's derivative, since a
+    least-squares slope is linear in the loads. The per-part loads go into the table's conditions, so that a
+    committed table can be split by part again."""
+    hull = dict(Y=(-0.004, 0.03), N=(-0.015, 0.002))  # (slope, v|v| coefficient) per coefficient
+    fin = dict(Y=(-0.008, 0.0), N=(0.0035, 0.0))
+    results = []
+    for beta in (-8, -4, 0, 4, 8):
+        c = Condition(3.344, drift_deg=beta)
+        v = (c.body_velocity() / c.speed)[1]
+        parts = {name: {k: a * v + b * v * abs(v) for k, (a, b) in loads.items()} for name, loads in
+                 (("hull", hull), ("fin", fin))}
+        total = {k: parts["hull"][k] + parts["fin"][k] for k in "YN"}
+        results.append({**record(c, **total), "components": {name: {**record(c, **load)["coefficients"]}
+                                                             for name, load in parts.items()}})
+    assert body_parts(results) == ["hull", "fin"]
+    rows = {r.name: r for r in derivative_table(results)}
+    by_part = derivatives_by_part(fit_parts(results))
+    assert set(by_part) == {"Yv", "Nv"}
+    for name in ("Yv", "Nv"):
+        assert sum(by_part[name].values()) == pytest.approx(rows[name].value, rel=1e-12)
+    assert by_part["Yv"]["fin"] == pytest.approx(-0.008, rel=1e-9)
+    assert by_part["Nv"]["fin"] == pytest.approx(0.0035, rel=1e-9)
+    json_path, _ = write_table(list(rows.values()), tmp_path / "t.json", {}, results, by_part=by_part)
+    data = json.loads(json_path.read_text())
+    assert data["by_part"] == by_part
+    assert body_parts(data["conditions"]) == ["hull", "fin"]
+    # records written before per-part loads were kept (one is enough) give no parts, not an error
+    older = [{k: v for k, v in r.items() if k != "components"} if i == 2 else r for i, r in enumerate(results)]
+    assert body_parts(older) == [] and fit_parts(older) == {}
+    write_table(list(rows.values()), tmp_path / "o.json", {}, older)
+    assert "components" not in json.loads((tmp_path / "o.json").read_text())["conditions"][2]
+
+
+def test_the_aff3_table_of_record_splits_by_part_as_its_mirror_symmetry_and_fin_geometry_require():
+    """AFF-3 is mirror-symmetric about its horizontal plane, which swaps the top and bottom rudders and leaves
+    sway and yaw alone: the two rudders must give the same share of Y'v, N'v, Y'r and N'r. The mirror about
+    the vertical plane swaps the port and starboard stern planes and reverses v and r, so their shares (of
+    the odd loads) must be equal too. A rudder's load in drift and in a turn acts on the rudder: its centre
+    of pressure, N'/Y' of its share, lies within the rudder's chordwise extent (from the SUBOFF geometry).
+    And the parts add up to the body's derivative: to 0.2 %, since the parts' loads are recorded on their own
+    and add up to the body's recorded load within about 0.05 % per condition. The meshes are not exactly
+    symmetric, so a few per cent."""
+    from pathlib import Path
+
+    from hydroderiv.geometry.suboff import suboff_body
+
+    table = json.loads((Path(__file__).parents[2] / "validation/derivatives-AFF-3-medium.json").read_text())
+    by_part = table["by_part"]
+    assert set(by_part) == {"Yv", "Nv", "Yr", "Nr"}
+    for name, parts in by_part.items():
+        assert sum(parts.values()) == pytest.approx(table[name], rel=2e-3)
+        assert parts["appendage_top"] == pytest.approx(parts["appendage_bottom"], rel=0.05)
+        assert abs(parts["appendage_port"] - parts["appendage_starboard"]) < 0.02 * abs(table[name])
+    body = suboff_body("AFF-3")
+    fin = body.component("appendage_top")
+    fin_x = fin.vertices[fin.faces][..., 0] / body.reference.length
+    for rudder in ("appendage_top", "appendage_bottom"):
+        for force, moment in (("Yv", "Nv"), ("Yr", "Nr")):
+            centre_of_pressure = by_part[moment][rudder] / by_part[force][rudder]
+            assert fin_x.min() <= centre_of_pressure <= fin_x.max(), (rudder, force, centre_of_pressure)

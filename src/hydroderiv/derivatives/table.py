@@ -201,17 +201,49 @@ def _slope_by_form(sweep: SweepFit) -> dict[str, float]:
     return slopes
 
 
+def body_parts(results: list[dict]) -> list[str]:
+    """The body parts (hull, sail, each appendage) whose loads every record carries; none where a record
+    predates per-part loads."""
+    parts = [record.get("components") or {} for record in results]
+    return [part for part in parts[0] if all(part in p for p in parts[1:])] if parts else []
+
+
+def fit_parts(results: list[dict], nonlinear: str = "abs", fit_offset: bool = True,
+              max_angle_deg: float | None = None) -> dict[str, dict[str, SweepFit]]:
+    """Each body part's sweeps, fitted as the whole body's are (:func:`fit_sweeps`): the same points, range
+    and nonlinear term. A least-squares slope is linear in the coefficients, so the parts' derivatives add
+    up to the body's wherever the parts' loads add up to its load; where a part carries its load decides
+    what it contributes (a fin aft of the moment centre, x' < 0, adds to N'r about x'^2 times its Y'v)."""
+    return {part: fit_sweeps([{**record, "coefficients": record["components"][part], "window_std": None}
+                              for record in results], nonlinear, fit_offset, max_angle_deg)
+            for part in body_parts(results)}
+
+
+def derivatives_by_part(part_fits: dict[str, dict[str, SweepFit]]) -> dict[str, dict[str, float]]:
+    """derivative -> part -> the part's contribution (prime units), from :func:`fit_parts`."""
+    table: dict[str, dict[str, float]] = {}
+    for part, fits in part_fits.items():
+        for name, sweep in fits.items():
+            table.setdefault(name, {})[part] = sweep.fit.slope_
+    return table
+
+
 def condition_summary(record: dict) -> dict:
-    """What a derivative table keeps of one condition's result, so that the fit can be checked and redone."""
+    """What a derivative table keeps of one condition's result, so that the fit (the body's, and each
+    part's where the record has per-part loads) can be checked and redone."""
     keys = ("name", "condition", "converged", "iterations", "coefficients", "window_std")
-    return {key: record.get(key) for key in keys}
+    summary = {key: record.get(key) for key in keys}
+    if record.get("components"):
+        summary["components"] = record["components"]
+    return summary
 
 
 def write_table(rows: list[DerivativeRow], json_path: str | Path, meta: dict, results: list[dict] = (),
-                stability: dict | None = None) -> tuple[Path, Path]:
+                stability: dict | None = None, by_part: dict[str, dict[str, float]] | None = None) -> tuple[Path, Path]:
     """JSON (keys Yv, Nv, ... in prime units, plus details, the conditions' coefficients when ``results``
-    are given, and the straight-line ``stability`` the derivatives imply, see :mod:`hydroderiv.simulation`)
-    and CSV beside it, both atomic."""
+    are given, the straight-line ``stability`` the derivatives imply, see :mod:`hydroderiv.simulation`, and
+    each body part's contribution ``by_part``, see :func:`derivatives_by_part`) and CSV beside it, both
+    atomic."""
     json_path = Path(json_path)
     payload = {row.name: row.value for row in rows}
     # NaN (no spare points, or records without a window deviation) is written as null: JSON has no NaN
@@ -221,6 +253,8 @@ def write_table(rows: list[DerivativeRow], json_path: str | Path, meta: dict, re
     payload["meta"] = meta
     if stability:
         payload["stability"] = stability
+    if by_part:
+        payload["by_part"] = by_part
     if results:
         payload["conditions"] = [condition_summary(r) for r in results]
     atomic_write_text(json_path, json.dumps(payload, indent=2) + "\n")
