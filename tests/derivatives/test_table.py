@@ -241,8 +241,9 @@ def test_the_aff3_table_of_record_splits_by_part_as_its_mirror_symmetry_and_fin_
     the vertical plane swaps the port and starboard stern planes and reverses v and r, so their shares (of
     the odd loads) must be equal too. A rudder's load in drift and in a turn acts on the rudder: its centre
     of pressure, N'/Y' of its share, lies within the rudder's chordwise extent (from the SUBOFF geometry).
-    And the parts add up to the body's derivative: to 0.2 %, since the parts' loads are recorded on their own
-    and add up to the body's recorded load within about 0.05 % per condition. The meshes are not exactly
+    And the parts add up to the body's derivative: to 0.2 %, since a part's load is the mean of every tenth
+    iteration of the averaging window (case.setup.COMPONENT_INTERVAL) and the body's of every iteration, so
+    they add up to the body's load only within about 0.05 % per condition. The meshes are not exactly
     symmetric, so a few per cent."""
     from pathlib import Path
 
