@@ -122,6 +122,28 @@ def test_a_velocity_gradient_limited_for_convection_only_leaves_the_strain_rate_
         SolverOptions(limit_velocity_gradient="sometimes")
 
 
+@pytest.mark.parametrize("where, entry", [("everywhere", "grad(U)"), ("convection", "limitedForConvection")])
+def test_a_relaxed_velocity_limiter_keeps_its_coefficient_through_the_switch_to_second_order(tmp_path, where, entry):
+    """velocity_limiter_coefficient = k writes `cellLimited Gauss linear k` wherever the velocity gradient is
+    limited; the turbulence fields keep the full limiter."""
+    from foamlib import FoamFile
+
+    from hydroderiv.case import Condition
+    from hydroderiv.case.numerics import LIMITED_GRADIENT, switch_to_second_order_convection
+    from hydroderiv.case.setup import CaseSettings, write_condition_case
+
+    mesh = tmp_path / "mesh"
+    (mesh / "constant/polyMesh").mkdir(parents=True)
+    settings = CaseSettings(length=4.261, components=("hull",),
+                            solver=SolverOptions(limit_velocity_gradient=where, velocity_limiter_coefficient=0.5))
+    case = write_condition_case(tmp_path / "case", mesh, Condition(speed=3.344), settings)
+    for _ in range(2):  # as set up, and after the run loop's switch to second order
+        grad = FoamFile(case / "system/fvSchemes")["gradSchemes"]
+        assert " ".join(map(str, grad[entry])) == "cellLimited Gauss linear 0.5"
+        assert " ".join(map(str, grad["grad(nuTilda)"])) == LIMITED_GRADIENT
+        switch_to_second_order_convection(case, settings.limiters_after_start())
+
+
 def test_simplec_relaxes_the_pressure_less_and_keeps_its_coupling_through_the_switch_to_second_order(tmp_path):
     """SIMPLEC (consistent) is set when the case is written; the mid-run switch of the convection schemes
     rewrites the schemes only, so the coupling chosen stays."""

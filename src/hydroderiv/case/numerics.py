@@ -50,6 +50,15 @@ LIMITED_PRESSURE_GRADIENT = LIMITED_GRADIENT
 VELOCITY_GRADIENT_LIMITING = ("everywhere", "convection", "nowhere")
 LIMITED_FOR_CONVECTION = "limitedForConvection"
 
+# How hard the velocity gradient is limited: the coefficient k of `cellLimited Gauss linear k`. With k = 1
+# no reconstructed face value leaves the range of the cell's and its neighbours' values; a smaller k widens
+# that range by (1/k - 1) times itself, so the limiter acts only on overshoots that much larger (k = 0.5:
+# twice the range). The limiter is a switch (min(1, r)): it acts at every local extremum of a velocity
+# component, however smooth, and how many cells it clips there changes with the incidence. The question
+# behind the option: whether the limiter makes the appendages' loads grow faster than linearly at small
+# incidences (README, Small incidences), which shortens the fitted slopes at the origin.
+DEFAULT_VELOCITY_LIMITER_COEFFICIENT = 1.0
+
 
 # The pressure-velocity coupling. "SIMPLE" (the default, and that of every result before the resolved-wall
 # studies of 2026-12-02) relaxes the pressure by 0.3. On meshes that resolve the wall (the body-fitted
@@ -81,14 +90,40 @@ class GradientLimiters:
 
     pressure: bool = False
     velocity: str = "everywhere"
+    velocity_coefficient: float = DEFAULT_VELOCITY_LIMITER_COEFFICIENT  # k of the velocity limiter, in (0, 1]
 
     def __post_init__(self):
-        check_velocity_gradient_limiting(self.velocity)
+        check_velocity_limiter(self.velocity, self.velocity_coefficient)
+
+
+def check_velocity_limiter(where, coefficient, source: str = "") -> None:
+    """An error naming ``source`` unless ``where`` (VELOCITY_GRADIENT_LIMITING) and the limiter coefficient
+    make sense, also together."""
+    check_velocity_gradient_limiting(where, source)
+    check_velocity_limiter_coefficient(coefficient, source)
+    if where == "nowhere" and coefficient != DEFAULT_VELOCITY_LIMITER_COEFFICIENT:
+        prefix = f"{source}: " if source else ""
+        raise ConfigurationError(f"{prefix}velocity_limiter_coefficient = {coefficient!r} needs a velocity limiter, "
+                                 "and limit_velocity_gradient = 'nowhere' has none")
 
 
 def check_velocity_gradient_limiting(value, source: str = "") -> str:
     """``value`` if it is a place to limit the velocity gradient; else an error naming ``source`` and the choices."""
     return _one_of("limit_velocity_gradient", value, VELOCITY_GRADIENT_LIMITING, source)
+
+
+def check_velocity_limiter_coefficient(value, source: str = "") -> float:
+    """``value`` as a float if it is a limiter coefficient k, 0 < k <= 1; else an error naming ``source``."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0.0 < value <= 1.0:
+        where = f"{source}: " if source else ""
+        raise ConfigurationError(f"{where}velocity_limiter_coefficient = {value!r} must be a number in (0, 1] "
+                                 "(1: fully limited, smaller: only larger overshoots limited)")
+    return float(value)
+
+
+def limited_gradient(coefficient: float = 1.0) -> str:
+    """The cell-limited Gauss gradient with limiter coefficient ``coefficient``."""
+    return f"cellLimited Gauss linear {coefficient:g}"
 
 
 def _convection_schemes(second_order: bool, limiters: GradientLimiters) -> dict[str, str]:
@@ -103,10 +138,11 @@ def _convection_schemes(second_order: bool, limiters: GradientLimiters) -> dict[
 
 def _gradient_schemes(limiters: GradientLimiters) -> dict[str, str]:
     schemes = {"default": "Gauss linear"}
+    velocity_limited = limited_gradient(limiters.velocity_coefficient)
     if limiters.velocity == "everywhere":
-        schemes["grad(U)"] = LIMITED_GRADIENT
+        schemes["grad(U)"] = velocity_limited
     elif limiters.velocity == "convection":
-        schemes[LIMITED_FOR_CONVECTION] = LIMITED_GRADIENT
+        schemes[LIMITED_FOR_CONVECTION] = velocity_limited
     schemes.update({f"grad({field})": LIMITED_GRADIENT for field in TURBULENCE_FIELDS})
     if limiters.pressure:
         schemes["grad(p)"] = LIMITED_PRESSURE_GRADIENT

@@ -64,11 +64,11 @@ class CaseSettings:
     def limiters_at_start(self, warm_start: Path | None) -> GradientLimiters:
         """The gradient limiters a case starts with."""
         pressure = self.solver.limit_pressure_gradient or self.limits_pressure_gradient_only_at_start(warm_start)
-        return GradientLimiters(pressure=pressure, velocity=self.solver.limit_velocity_gradient)
+        return self.solver.gradient_limiters(pressure)
 
     def limiters_after_start(self) -> GradientLimiters:
         """The gradient limiters from the switch to second-order convection on (and of a warm start)."""
-        return GradientLimiters(pressure=self.solver.limit_pressure_gradient, velocity=self.solver.limit_velocity_gradient)
+        return self.solver.gradient_limiters(self.solver.limit_pressure_gradient)
 
     def __post_init__(self):
         if self.method not in FRAME_METHODS:

@@ -11,10 +11,12 @@ from typing import Any
 
 from ..errors import ConfigurationError
 from .fluid import DEFAULT_TURBULENCE_MODEL, check_turbulence_model
-from .numerics import check_pressure_velocity_coupling, check_velocity_gradient_limiting
+from .numerics import (DEFAULT_VELOCITY_LIMITER_COEFFICIENT, GradientLimiters, check_pressure_velocity_coupling,
+                       check_velocity_limiter)
 
 # the [study] keys read by SolverOptions.from_study_table
-STUDY_TABLE_KEYS = ("turbulence_model", "limit_pressure_gradient", "limit_velocity_gradient", "pressure_velocity_coupling")
+STUDY_TABLE_KEYS = ("turbulence_model", "limit_pressure_gradient", "limit_velocity_gradient", "velocity_limiter_coefficient",
+                    "pressure_velocity_coupling")
 
 
 @dataclass(frozen=True)
@@ -27,13 +29,15 @@ class SolverOptions:
     # everything after the switch to second order run unlimited.
     limit_pressure_gradient_at_start: bool = False
     limit_velocity_gradient: str = "everywhere"  # see hydroderiv.case.numerics.VELOCITY_GRADIENT_LIMITING
+    # k of that limiter (see hydroderiv.case.numerics.DEFAULT_VELOCITY_LIMITER_COEFFICIENT)
+    velocity_limiter_coefficient: float = DEFAULT_VELOCITY_LIMITER_COEFFICIENT
     pressure_velocity_coupling: str = "SIMPLE"  # see hydroderiv.case.numerics.PRESSURE_VELOCITY_COUPLINGS
 
     def __post_init__(self):
         if self.limit_pressure_gradient and self.limit_pressure_gradient_at_start:
             raise ConfigurationError("limit the pressure gradient either always or at the start, not both")
         check_turbulence_model(self.turbulence_model)
-        check_velocity_gradient_limiting(self.limit_velocity_gradient)
+        self.gradient_limiters(pressure=False)  # checks the velocity limiter and its coefficient together
         check_pressure_velocity_coupling(self.pressure_velocity_coupling)
 
     @classmethod
@@ -44,11 +48,15 @@ class SolverOptions:
         if not isinstance(limit_pressure_gradient, bool) and limit_pressure_gradient != "start":
             raise ConfigurationError(f"{source}: [study] limit_pressure_gradient = {limit_pressure_gradient!r} must be "
                                      "true, false or \"start\" (limited during a cold start's first-order iterations only)")
+        limit_velocity_gradient = table.get("limit_velocity_gradient", "everywhere")
+        velocity_limiter_coefficient = table.get("velocity_limiter_coefficient", DEFAULT_VELOCITY_LIMITER_COEFFICIENT)
+        check_velocity_limiter(limit_velocity_gradient, velocity_limiter_coefficient, source)
         return cls(
             turbulence_model=check_turbulence_model(table.get("turbulence_model", DEFAULT_TURBULENCE_MODEL), source),
             limit_pressure_gradient=limit_pressure_gradient is True,
             limit_pressure_gradient_at_start=limit_pressure_gradient == "start",
-            limit_velocity_gradient=check_velocity_gradient_limiting(table.get("limit_velocity_gradient", "everywhere"), source),
+            limit_velocity_gradient=limit_velocity_gradient,
+            velocity_limiter_coefficient=float(velocity_limiter_coefficient),
             pressure_velocity_coupling=check_pressure_velocity_coupling(
                 table.get("pressure_velocity_coupling", "SIMPLE"), source),
         )
@@ -62,11 +70,20 @@ class SolverOptions:
             "-limited-grad-p" if self.limit_pressure_gradient else "") + (
             {"everywhere": "", "convection": "-grad-U-limited-in-convection",
              "nowhere": "-unlimited-grad-U"}[self.limit_velocity_gradient]) + (
+            f"-grad-U-limiter-{self.velocity_limiter_coefficient:g}"
+            if self.velocity_limiter_coefficient != DEFAULT_VELOCITY_LIMITER_COEFFICIENT else "") + (
             f"-{self.pressure_velocity_coupling}" if self.pressure_velocity_coupling != "SIMPLE" else "")
+
+    def gradient_limiters(self, pressure: bool) -> GradientLimiters:
+        """The gradient limiters of these options, the pressure gradient limited or not as ``pressure``
+        says (it may differ at a cold start; see CaseSettings)."""
+        return GradientLimiters(pressure=pressure, velocity=self.limit_velocity_gradient,
+                                velocity_coefficient=self.velocity_limiter_coefficient)
 
     def record(self) -> dict[str, Any]:
         """The options as a results file records them."""
         return {"turbulence_model": self.turbulence_model,
                 "limited_pressure_gradient": self.limit_pressure_gradient,
                 "limited_velocity_gradient": self.limit_velocity_gradient,  # everywhere, or in convection only
+                "velocity_limiter_coefficient": self.velocity_limiter_coefficient,
                 "pressure_velocity_coupling": self.pressure_velocity_coupling}

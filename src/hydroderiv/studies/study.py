@@ -12,6 +12,7 @@ Example::
     turbulence_model = "kOmegaSST"  # optional: or "ShihQuadraticKE", "realizableKE", "SpalartAllmaras" (case/fluid.py)
     limit_pressure_gradient = false  # optional: true, or "start" (case/numerics.py)
     limit_velocity_gradient = "everywhere"  # optional: or "convection", "nowhere" (case/numerics.py)
+    velocity_limiter_coefficient = 1.0  # optional: k of that limiter, in (0, 1]; smaller limits less (case/numerics.py)
     pressure_velocity_coupling = "SIMPLE"  # optional: or "SIMPLEC", for walls resolved to y+ ~ 1 (case/numerics.py)
 
     [sweeps]                  # one variable at a time about straight-ahead
