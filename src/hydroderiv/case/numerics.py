@@ -60,7 +60,7 @@ LIMITED_FOR_CONVECTION = "limitedForConvection"
 # coarse AFF-8, Spalart-Allmaras: the side force per degree grows by 7 % from 1 to 4 degrees with k = 1
 # and with k = 0.5), but k = 0.5 shifts the loads themselves: side force and drag 12-16 % lower, the
 # hull's side force in a turn up to half higher, the rudders' small-angle loads erratic; on the medium
-# mesh 2-5 % and a tenth of the turn's side force. So the option measures the limiter's share of the
+# mesh 4-5 % and 6 % of the turn's side force. So the option measures the limiter's share of the
 # numerical error; it is not a better default.
 DEFAULT_VELOCITY_LIMITER_COEFFICIENT = 1.0
 
