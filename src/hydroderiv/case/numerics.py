@@ -16,7 +16,16 @@ from .fluid import TURBULENCE_MODELS
 
 SECOND_ORDER = "bounded Gauss linearUpwind"  # followed by the name of the gradient scheme it reconstructs with
 FIRST_ORDER = "bounded Gauss upwind"
-LIMITED_GRADIENT = "cellLimited Gauss linear 1"  # no face value beyond the neighbouring cells' values
+
+
+def limited_gradient(coefficient: float = 1.0) -> str:
+    """The cell-limited Gauss gradient with limiter coefficient ``coefficient`` (1: no face value beyond the
+    neighbouring cells' values)."""
+    return f"cellLimited Gauss linear {coefficient:g}"
+
+
+LIMITED_GRADIENT = limited_gradient(1.0)
+
 # every field some model of TURBULENCE_MODELS transports: k, omega, epsilon, nuTilda
 TURBULENCE_FIELDS = tuple(dict.fromkeys(field for fields in TURBULENCE_MODELS.values() for field in fields))
 
@@ -81,10 +90,14 @@ def check_pressure_velocity_coupling(value, source: str = "") -> str:
     return _one_of("pressure_velocity_coupling", value, PRESSURE_VELOCITY_COUPLINGS, source)
 
 
+def _naming(source: str) -> str:
+    """The start of an error message that names ``source`` (the file), if one is given."""
+    return f"{source}: " if source else ""
+
+
 def _one_of(key: str, value, choices, source: str) -> str:
     if value not in choices:
-        where = f"{source}: " if source else ""
-        raise ConfigurationError(f"{where}{key} = {value!r} must be one of {', '.join(map(repr, choices))}")
+        raise ConfigurationError(f"{_naming(source)}{key} = {value!r} must be one of {', '.join(map(repr, choices))}")
     return value
 
 
@@ -107,8 +120,7 @@ def check_velocity_limiter(where, coefficient, source: str = "") -> None:
     check_velocity_gradient_limiting(where, source)
     check_velocity_limiter_coefficient(coefficient, source)
     if where == "nowhere" and coefficient != DEFAULT_VELOCITY_LIMITER_COEFFICIENT:
-        prefix = f"{source}: " if source else ""
-        raise ConfigurationError(f"{prefix}velocity_limiter_coefficient = {coefficient!r} needs a velocity limiter, "
+        raise ConfigurationError(f"{_naming(source)}velocity_limiter_coefficient = {coefficient!r} needs a velocity limiter, "
                                  "and limit_velocity_gradient = 'nowhere' has none")
 
 
@@ -120,15 +132,9 @@ def check_velocity_gradient_limiting(value, source: str = "") -> str:
 def check_velocity_limiter_coefficient(value, source: str = "") -> float:
     """``value`` as a float if it is a limiter coefficient k, 0 < k <= 1; else an error naming ``source``."""
     if isinstance(value, bool) or not isinstance(value, (int, float)) or not 0.0 < value <= 1.0:
-        where = f"{source}: " if source else ""
-        raise ConfigurationError(f"{where}velocity_limiter_coefficient = {value!r} must be a number in (0, 1] "
+        raise ConfigurationError(f"{_naming(source)}velocity_limiter_coefficient = {value!r} must be a number in (0, 1] "
                                  "(1: fully limited, smaller: only larger overshoots limited)")
     return float(value)
-
-
-def limited_gradient(coefficient: float = 1.0) -> str:
-    """The cell-limited Gauss gradient with limiter coefficient ``coefficient``."""
-    return f"cellLimited Gauss linear {coefficient:g}"
 
 
 def _convection_schemes(second_order: bool, limiters: GradientLimiters) -> dict[str, str]:

@@ -37,7 +37,7 @@ class SolverOptions:
         if self.limit_pressure_gradient and self.limit_pressure_gradient_at_start:
             raise ConfigurationError("limit the pressure gradient either always or at the start, not both")
         check_turbulence_model(self.turbulence_model)
-        self.gradient_limiters(pressure=False)  # checks the velocity limiter and its coefficient together
+        check_velocity_limiter(self.limit_velocity_gradient, self.velocity_limiter_coefficient)
         check_pressure_velocity_coupling(self.pressure_velocity_coupling)
 
     @classmethod
