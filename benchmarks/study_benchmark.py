@@ -1,6 +1,6 @@
 """Benchmark of a captive-test study: solver throughput, warm against cold starts, MPI scaling, total time.
 
-    python benchmarks/study_benchmark.py studies/aff8-coarse-quick.toml
+    python benchmarks/study_benchmark.py studies/aff8-coarse-sa.toml
 
 Prints, and writes to benchmarks/results/<study>.json:
 - per condition: iterations, wall time of the solver, cell-iterations and cell-iterations per second;
@@ -59,7 +59,7 @@ def fixed_iterations(study: Study, settings: CaseSettings, n_procs: int, iterati
 
 def main(argv: list[str] | None = None) -> int:
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    parser.add_argument("study", nargs="?", default="studies/aff8-coarse-quick.toml")
+    parser.add_argument("study", nargs="?", default="studies/aff8-coarse-sa.toml")  # the main job's study
     parser.add_argument("--cold", type=int, default=2, help="conditions to repeat from a cold start (default 2)")
     parser.add_argument("--iterations", type=int, default=30, help="iterations for the 1-against-2-ranks timing")
     parser.add_argument("--out", help="JSON output (default benchmarks/results/<study stem>.json)")
