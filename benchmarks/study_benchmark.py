@@ -91,7 +91,8 @@ def main(argv: list[str] | None = None) -> int:
     for row in warm_started:
         condition = next(c for c in study.conditions if c.name == row["condition"])
         case = study.work / "benchmark" / "cold" / condition.name
-        record = read_result(case) or run_condition(case, study.workspace.mesh_dir, condition, settings, study.criterion)
+        record = read_result(case) or run_condition(case, study.workspace.mesh_dir, condition, settings,
+                                                    study.criterion_for(condition))
         cold.append({"condition": condition.name, "warm_iterations": row["iterations"], "cold_iterations": record["iterations"],
                      "warm_wall_s": row["wall_s"], "cold_wall_s": record["wall_seconds"]})
 

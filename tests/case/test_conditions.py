@@ -26,6 +26,21 @@ def test_drift_and_pitch_follow_the_seed_paper_definitions():
     assert np.linalg.norm(both.inflow()) == pytest.approx(2.0)
 
 
+@pytest.mark.parametrize(
+    "kw, loads",
+    [
+        (dict(), ()),
+        (dict(drift_deg=-4), ("Y", "N")),
+        (dict(yaw_rate_prime=0.1), ("Y", "N")),
+        (dict(pitch_deg=2), ("Z", "M")),
+        (dict(pitch_rate_prime=-0.2), ("Z", "M")),
+        (dict(yaw_rate_prime=0.2, pitch_deg=4), ("Y", "N", "Z", "M")),
+    ],
+)
+def test_a_condition_names_the_loads_its_derivatives_come_from(kw, loads):
+    assert Condition(speed=3.344, **kw).defining_loads == loads
+
+
 def test_starboard_turn_centre_lies_to_starboard_at_radius_L_over_r():
     c = Condition(speed=3.344, yaw_rate_prime=0.3)
     np.testing.assert_allclose(c.turn_centre(L), [0, L / 0.3, 0], rtol=1e-12)

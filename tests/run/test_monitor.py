@@ -3,6 +3,7 @@
 import numpy as np
 import pytest
 
+from hydroderiv.errors import ConfigurationError
 from hydroderiv.run.monitor import ConvergenceCriterion, LogWatcher, force_divergence
 
 LOG = """Time = 1
@@ -101,6 +102,30 @@ def test_a_small_component_is_judged_against_the_largest_load():
     assert c.is_met(it, loads)
     loads[:, 2] = -5e-6 + 1e-7 * it  # now 1 % of the largest force
     assert not c.is_met(it, loads)
+
+
+def test_a_defining_load_is_held_to_its_own_size():
+    # A yaw turn at r' = 0.1: the side force that gives Y'r is a fifth of the drag.
+    c = ConvergenceCriterion(window=60, rel_tol=0.015, min_iterations=110)
+    it = np.arange(1, 201)
+    loads = np.zeros((len(it), 6))
+    loads[:, 0] = -1.36e-3
+    loads[:, 1] = -3e-4 * (1 + 3e-4 * (it - 200))  # still growing: 1.8 % of itself over the window
+    loads[:, 5] = 3.4e-4
+    assert c.is_met(it, loads)  # against the drag it passes: 0.4 % of X'
+    held = c.holding_to_own_size(("Y", "N"))
+    assert held.own_scale == ("Y", "N") and not held.is_met(it, loads)
+    loads[:, 1] = -3e-4 * (1 + 1e-4 * (it - 200))  # 0.6 % of itself
+    assert held.is_met(it, loads)
+
+
+def test_holding_to_own_size_keeps_what_was_held_and_refuses_unknown_loads():
+    c = ConvergenceCriterion(own_scale=("M",)).holding_to_own_size(("Y", "N", "M"))
+    assert c.own_scale == ("M", "Y", "N")
+    with pytest.raises(ConfigurationError, match="unknown load coefficient.*Q.*X, Y, Z, K, M, N"):
+        ConvergenceCriterion(own_scale=("Q",))
+    with pytest.raises(ConfigurationError, match="unknown load coefficient.*drag"):
+        ConvergenceCriterion(monitored=("drag",))
 
 
 def test_only_the_monitored_coefficients_must_settle():

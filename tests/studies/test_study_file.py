@@ -64,6 +64,7 @@ def test_run_order_starts_straight_and_moves_outward():
         (GOOD.replace("drift_deg = [-4, 4, 8]", "drift_deg = [45]"), "drift angle 45"),
         (GOOD.replace("yaw_rate_prime = [0.1, -0.1]", "yaw_rate_prime = [3.0]"), "impossible"),
         (GOOD.replace("rel_tol", "tolerance"), "unknown convergence keys"),
+        (GOOD + 'monitored = ["X", "lift"]\n', r"s\.toml: \[convergence\] unknown load coefficient\(s\) lift"),
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nmethod = "rotating"'), "unknown method 'rotating'"),
         (GOOD.replace('level = "coarse"', 'level = "coarse"\nspeed_kn = 6'), r"unknown \[study\] key\(s\) speed_kn"),
         (GOOD + '\n[fit]\nnonlinear = "quadratic"\n', "unknown nonlinear term 'quadratic'"),
@@ -133,8 +134,11 @@ def test_a_retried_condition_warm_starts_from_conditions_finished_by_an_earlier_
     monkeypatch.setattr(study_module.Study, "case_settings", lambda self, body: None)
     starts, failing = {}, {Condition(study.speed).name}
 
+    held = {}
+
     def stand_in(case, mesh, condition, settings, criterion, warm_start=None, on_progress=None):
         starts[condition.name] = warm_start
+        held[condition.name] = criterion.own_scale
         if condition.name in failing:
             raise SolverDivergedError(f"{condition.name} diverged")
         (case / "100").mkdir()
@@ -147,6 +151,10 @@ def test_a_retried_condition_warm_starts_from_conditions_finished_by_an_earlier_
     straight = Condition(study.speed).name
     study_module.run_study(study, log=lambda m: None)
     assert starts[straight] is None  # nothing had finished yet: a cold start, and it fails
+    # each condition's derivative-giving loads settle to their own size; straight ahead keeps the load scale
+    assert held[straight] == () and held[Condition(study.speed, drift_deg=4).name] == ("Y", "N")
+    assert held[Condition(study.speed, yaw_rate_prime=-0.1).name] == ("Y", "N")
+    assert study.criterion.rel_tol == 0.01 and study.criterion_for(Condition(study.speed, drift_deg=4)).rel_tol == 0.01
     assert study.status()["failed"] == [straight]
 
     failing.clear()

@@ -58,6 +58,17 @@ class Condition:
                 )
 
     @property
+    def defining_loads(self) -> tuple[str, ...]:
+        """The load coefficients whose change from straight ahead gives this condition's derivatives: Y' and N'
+        for drift and yaw turns, Z' and M' for pitch and pitch turns, none straight ahead."""
+        loads: tuple[str, ...] = ()
+        if self.drift_deg or self.yaw_rate_prime:
+            loads += ("Y", "N")
+        if self.pitch_deg or self.pitch_rate_prime:
+            loads += ("Z", "M")
+        return loads
+
+    @property
     def name(self) -> str:
         """A file-system-safe label, e.g. ``U3.344_b+4_a0_r+0.3_q0``."""
 

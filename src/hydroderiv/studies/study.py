@@ -156,7 +156,7 @@ class Study:
             n_procs=int(head.get("n_procs", 2)),
             work=Path(head.get("work", Path("runs") / path.stem)),
             conditions=unique,
-            criterion=ConvergenceCriterion(**conv),
+            criterion=_criterion(conv, path),
             method=method,
             solver=solver,
             nonlinear=nonlinear,
@@ -173,6 +173,11 @@ class Study:
         """What every condition of this study needs besides the condition itself."""
         return CaseSettings(length=body.reference.length, components=body.component_names, n_procs=self.n_procs,
                             max_iterations=self.criterion.max_iterations, method=self.method, solver=self.solver)
+
+    def criterion_for(self, condition: Condition) -> ConvergenceCriterion:
+        """When ``condition`` has converged: the study's criterion, with the loads its derivatives come from
+        held to their own size rather than to the largest load's (a turn's side force beside the drag)."""
+        return self.criterion.holding_to_own_size(condition.defining_loads)
 
     def frame_method(self, condition: Condition) -> str:
         """The frame ``condition`` is solved in. Without rotation both methods are the same translation, so
@@ -198,6 +203,14 @@ class Study:
             else:
                 states["left"].append(c.name)
         return states
+
+
+def _criterion(table: dict, path: Path) -> ConvergenceCriterion:
+    """The study's [convergence] table as a criterion; a bad load name is reported with the file's name."""
+    try:
+        return ConvergenceCriterion(**table)
+    except ConfigurationError as error:
+        raise ConfigurationError(f"{path}: [convergence] {error}") from None
 
 
 def _running(case: Path) -> bool:
@@ -260,7 +273,8 @@ def run_study(
             (case / FAILED_FILE).unlink(missing_ok=True)
             atomic_write_text(running_marker(case), str(os.getpid()))
             try:
-                done = run_condition(case, ws.mesh_dir, condition, settings, study.criterion, warm_start=start,
+                done = run_condition(case, ws.mesh_dir, condition, settings, study.criterion_for(condition),
+                                     warm_start=start,
                                      on_progress=(lambda p, c=condition: on_progress(c, p)) if on_progress else None)
             except HydroderivError as error:
                 atomic_write_text(case / FAILED_FILE, json.dumps({"error": str(error), "trace": traceback.format_exc()}, indent=2))
