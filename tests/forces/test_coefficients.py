@@ -40,7 +40,7 @@ def test_side_force_at_b_has_its_lever_about_the_turn_centre_removed():
     _, moment = body_axis_loads(np.zeros(1), force, moment_about_a, turn_centre=centre,
                                 axis=np.array([0.0, 0.0, 1.0]), omega=0.1)
     np.testing.assert_allclose(moment, 0.0, atol=1e-12)
-    surge = np.array([[7.0, 0.0, 0.0]])  # a surge force at B: yaw moment -R X about A, none about B
+    surge = np.array([[7.0, 0.0, 0.0]])  # a surge force at B, R to port of A: yaw moment R X about A, none about B
     moment_about_a = np.cross(-centre, surge[0])[None, :]
     assert moment_about_a[0, 2] == pytest.approx(70.0)
     _, moment = body_axis_loads(np.zeros(1), surge, moment_about_a, turn_centre=centre,
