@@ -41,9 +41,11 @@ import numpy as np
 from foamlib import FoamFieldFile, FoamFile
 
 from hydroderiv._io import atomic_write_text
+from hydroderiv.case.conditions import Condition
 from hydroderiv.case.setup import latest_time_dir
 from hydroderiv.errors import HydroderivError
 from hydroderiv.forces import COEFFICIENT_NAMES, PrimeScales, body_axis_loads, read_history
+from hydroderiv.run.condition import read_result
 from hydroderiv.run.openfoam import run_application
 
 FORCES = "forces_about_turn_centre"
@@ -57,17 +59,28 @@ WHAT = {  # what a run is, by its mesh motion
 RESULT_FIELDS = ("U", "p", "nut", "nuTilda", "k", "omega", "epsilon")
 
 
+def _finished(case: Path) -> tuple[dict, Path]:
+    """The result record of a finished condition and its last saved solution."""
+    result = read_result(case)
+    latest = latest_time_dir(case) if result is not None else None
+    if latest is None:
+        raise HydroderivError(f"{case} is not a finished condition (no result.json or no saved solution)")
+    return result, latest
+
+
+def _is_straight_ahead(result: dict) -> bool:
+    condition = Condition(**result["condition"])
+    return condition == Condition(condition.speed)
+
+
 def _body_patches(control: FoamFile) -> list[str]:
     return [str(p) for p in control["functions"]["forces_total"]["patches"]]
 
 
 def _start_from_straight_run(straight: Path, start: Path, body_velocity: np.ndarray) -> None:
     """Replace the cell values in ``start`` by the straight-ahead solution's, turned into the inertial frame."""
-    latest = latest_time_dir(straight)
-    if latest is None:
-        raise HydroderivError(f"{straight} has no saved solution to start from")
-    result = json.loads((straight / "result.json").read_text())
-    if any(result["condition"][key] for key in ("drift_deg", "pitch_deg", "yaw_rate_prime", "pitch_rate_prime")):
+    result, latest = _finished(straight)
+    if not _is_straight_ahead(result):
         raise HydroderivError(f"{straight} is not the straight-ahead condition: {result['condition']}")
     for path in start.iterdir():
         if not (latest / path.name).is_file():
@@ -84,11 +97,8 @@ def set_up_inertial_case(source: Path, copy: Path, lengths: float, time_step: fl
 
     ``translate`` (with ``straight``) moves the mesh in a straight line at the turn's speed instead: the
     straight run carried on with the mesh moving through fluid at rest, the control for the moving mesh."""
-    latest = latest_time_dir(source)
-    if latest is None:
-        raise HydroderivError(f"{source} has no saved solution to carry on from")
-    result = json.loads((source / "result.json").read_text())
-    if result["condition"]["yaw_rate_prime"]:
+    result, latest = _finished(source)
+    if Condition(**result["condition"]).is_turning:
         mrf = FoamFile(source / "constant/MRFProperties")
         zone = next(iter(mrf.keys()))
         if not mrf[zone].get("nonRotatingPatches"):
@@ -97,7 +107,7 @@ def set_up_inertial_case(source: Path, copy: Path, lengths: float, time_step: fl
         origin = np.asarray(mrf[zone]["origin"], float)
         axis = np.asarray(mrf[zone]["axis"], float)
         omega = float(mrf[zone]["omega"])
-    elif not any(value for key, value in result["condition"].items() if key != "speed"):
+    elif _is_straight_ahead(result):
         # straight ahead, the control: the same transient procedure on a still mesh should hold its loads
         zone_name, origin, axis, omega = None, np.zeros(3), np.array([0.0, 0.0, 1.0]), 0.0
     else:
@@ -108,17 +118,10 @@ def set_up_inertial_case(source: Path, copy: Path, lengths: float, time_step: fl
     shutil.rmtree(copy, ignore_errors=True)
     copy.mkdir(parents=True)
     shutil.copytree(source / "system", copy / "system")
-    (copy / "constant").mkdir()
-    for item in (source / "constant").iterdir():
-        if item.name in ("MRFProperties", "fvOptions"):
-            continue  # the frame is inertial; a classic turn has no source
-        target = copy / "constant" / item.name
-        if item.is_symlink():
-            target.symlink_to(item.resolve())  # the mesh: read only, moved points go to the time folders
-        elif item.is_dir():
-            shutil.copytree(item, target, symlinks=True)
-        else:
-            shutil.copy2(item, target)
+    # the frame is inertial (a classic turn has no source); the mesh stays a link: moved points go to the
+    # time folders
+    shutil.copytree(source / "constant", copy / "constant", symlinks=True,
+                    ignore=shutil.ignore_patterns("MRFProperties", "fvOptions"))
     # time 0, not the iteration count: rotatingMotion turns the mesh by omega * t from its stored points
     start = copy / "0"
     start.mkdir()
@@ -249,7 +252,7 @@ def main() -> None:
     history = body_axis_coefficients(args.copy / "postProcessing", setup)
     travel = history["time"] * setup["speed"] / setup["length"]  # body lengths travelled
     # the steady solution: MRF's for a turn, the straight run's when the mesh only translates
-    reference = json.loads((args.initial / "result.json").read_text()) if args.translate else setup["result"]
+    reference = _finished(args.initial)[0] if args.translate else setup["result"]
     steady = reference["coefficients"]
     last = travel >= travel[-1] - 0.25  # the last quarter of a body length
     print(f"{'travel (L)':>10} " + " ".join(f"{name + chr(39):>11}" for name in "XYN"))
