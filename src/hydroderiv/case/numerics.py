@@ -65,7 +65,7 @@ LIMITED_FOR_CONVECTION = "limitedForConvection"
 # twice the range). The limiter is a switch (min(1, r)): it acts at every local extremum of a velocity
 # component, however smooth, and how many cells it clips there changes with the incidence. The question
 # behind the option was whether the limiter makes the loads grow faster than linearly at small incidences
-# (README, Small incidences), which shortens the fitted slopes at the origin. It does not (2026-12-06,
+# (docs/validation.md), which shortens the fitted slopes at the origin. It does not (2026-12-06,
 # coarse AFF-8, Spalart-Allmaras: the side force per degree grows by 7 % from 1 to 4 degrees with k = 1
 # and with k = 0.5), but k = 0.5 shifts the loads themselves: side force and drag 12-16 % lower, the
 # hull's side force in a turn up to half higher, the rudders' small-angle loads erratic; on the medium

@@ -2,7 +2,7 @@
 first-cell y+.
 
 Why: snappyHexMesh cannot keep prism layers thin enough for y+ ~ 1 on SUBOFF's tail cone (the layers
-collapse there, see README), so the wall-function set-up could never be compared with a wall-resolved one
+collapse there, see docs/validation.md), so the wall-function set-up could never be compared with a wall-resolved one
 on the stern, which carries most of the rotary loads. A body of revolution needs no mesher: this module
 places every point itself.
 
@@ -319,7 +319,7 @@ def meridian_grid(profile: Profile, d: RevolutionDesign, fins: Fins | None = Non
 
     # first spacing: the wall cell on the body, growing along the axis away from the tips. The axis is no
     # wall, and cells there as thin as the wall's (17 um at y+ = 1) made simpleFoam blow up behind the tail
-    # (y+ = 1 still diverges, now on the nose: see README).
+    # (y+ = 1 still diverges, now on the nose: see README, mesh).
     # _offset_from_wall shifts a line's nodes by BLEND (first / wall - 1); growing that shift by
     # ``axis_shear`` per metre along the axis keeps neighbouring lines' nodes within that fraction of their
     # spacing, whatever the wall cell.
