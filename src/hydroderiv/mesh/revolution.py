@@ -2,9 +2,9 @@
 first-cell y+.
 
 Why: snappyHexMesh cannot keep prism layers thin enough for y+ ~ 1 on SUBOFF's tail cone (the layers
-collapse there, see docs/validation.md), so the wall-function set-up could never be compared with a wall-resolved one
-on the stern, which carries most of the rotary loads. A body of revolution needs no mesher: this module
-places every point itself.
+collapse there, see docs/validation.md), so the wall-function set-up could never be compared with a
+wall-resolved one on the stern, which carries most of the rotary loads. A body of revolution needs no
+mesher: this module places every point itself.
 
 Topology: a structured grid in the meridian half-plane (s metres aft of the nose, rho), revolved about
 the axis. Its inner edge runs along the axis from the inlet plane to the nose's tip, over the body's profile
