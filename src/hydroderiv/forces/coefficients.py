@@ -9,6 +9,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
+from scipy.spatial.transform import Rotation
 
 
 @dataclass(frozen=True)
@@ -33,12 +34,6 @@ class PrimeScales:
 COEFFICIENT_NAMES = ("X", "Y", "Z", "K", "M", "N")
 
 
-def _rotation(axis: np.ndarray, angle: float) -> np.ndarray:
-    """The right-handed rotation by ``angle`` (radians) about the unit vector ``axis`` (Rodrigues' formula)."""
-    k = np.array([[0.0, -axis[2], axis[1]], [axis[2], 0.0, -axis[0]], [-axis[1], axis[0], 0.0]])
-    return np.eye(3) + np.sin(angle) * k + (1.0 - np.cos(angle)) * (k @ k)
-
-
 def body_axis_loads(times: np.ndarray, force: np.ndarray, moment: np.ndarray, *, turn_centre: np.ndarray,
                     axis: np.ndarray, omega: float) -> tuple[np.ndarray, np.ndarray]:
     """Force and moment in body axes about B, for a body that turns about ``turn_centre`` A with the mesh.
@@ -50,11 +45,8 @@ def body_axis_loads(times: np.ndarray, force: np.ndarray, moment: np.ndarray, *,
     B is the one about A less (B - A) x F, with B - A = -A fixed in body axes.
     """
     axis = np.asarray(axis, float) / np.linalg.norm(axis)
-    lever = -np.asarray(turn_centre, float)
-    body_force, body_moment = [], []
-    for t, f, m in zip(np.asarray(times, float), np.asarray(force, float), np.asarray(moment, float)):
-        back = _rotation(axis, -omega * t)
-        f_body = back @ f
-        body_force.append(f_body)
-        body_moment.append(back @ m - np.cross(lever, f_body))
-    return np.array(body_force).reshape(-1, 3), np.array(body_moment).reshape(-1, 3)
+    back = Rotation.from_rotvec(-omega * np.asarray(times, float)[:, None] * axis)  # one rotation per time
+    body_force = back.apply(np.asarray(force, float).reshape(-1, 3))
+    body_moment = back.apply(np.asarray(moment, float).reshape(-1, 3)) - np.cross(-np.asarray(turn_centre, float),
+                                                                                  body_force)
+    return body_force.reshape(-1, 3), body_moment.reshape(-1, 3)
