@@ -191,10 +191,9 @@ def set_up_inertial_case(source: Path, copy: Path, lengths: float, time_step: fl
 def body_axis_coefficients(post: Path, setup: dict) -> dict[str, np.ndarray]:
     """X', Y', Z', K', M', N' per time step in body axes about B, from the loads about the fixed point A."""
     force, moment = (read_history(post, FORCES, quantity) for quantity in ("force", "moment"))
-    # a mesh moving in a straight line takes B away from the fixed centre of the moments by V t
-    about_b = moment.total - np.cross(np.outer(force.iterations, setup["translation"]), force.total)
-    body_force, body_moment = body_axis_loads(force.iterations, force.total, about_b,
-                                              turn_centre=setup["origin"], axis=setup["axis"], omega=setup["omega"])
+    body_force, body_moment = body_axis_loads(force.iterations, force.total, moment.total,
+                                              turn_centre=setup["origin"], axis=setup["axis"], omega=setup["omega"],
+                                              velocity=setup["translation"])
     coefficients = PrimeScales(setup["rho"], setup["speed"], setup["length"]).coefficients(body_force, body_moment)
     return {"time": force.iterations, **{name: coefficients[:, k] for k, name in enumerate(COEFFICIENT_NAMES)}}
 

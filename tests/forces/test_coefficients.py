@@ -55,3 +55,17 @@ def test_a_quarter_turn_moves_a_forward_force_to_the_side():
     force, _ = body_axis_loads(np.array([t]), np.array([[0.0, 3.0, 0.0]]), np.zeros((1, 3)),
                                turn_centre=np.zeros(3), axis=np.array([0.0, 0.0, 1.0]), omega=omega)
     np.testing.assert_allclose(force[0], [3.0, 0.0, 0.0], atol=1e-12)
+
+
+def test_a_translating_body_keeps_its_moment_about_b():
+    # a mesh moving in a straight line: a side force at B, which is V t from the fixed moment centre,
+    # has a yaw moment about that centre that grows with t, and none about B
+    velocity = np.array([-3.344, 0.0, 0.0])
+    times = np.linspace(0.0, 2.0, 5)
+    force = np.tile([0.0, 40.0, 0.0], (len(times), 1))
+    moment = np.cross(np.outer(times, velocity), force)  # about B's start
+    assert abs(moment[-1, 2]) > 100.0
+    got_force, got_moment = body_axis_loads(times, force, moment, turn_centre=np.zeros(3),
+                                            axis=np.array([0.0, 0.0, 1.0]), omega=0.0, velocity=velocity)
+    np.testing.assert_allclose(got_force, force, atol=1e-12)
+    np.testing.assert_allclose(got_moment, 0.0, atol=1e-9)

@@ -35,18 +35,24 @@ COEFFICIENT_NAMES = ("X", "Y", "Z", "K", "M", "N")
 
 
 def body_axis_loads(times: np.ndarray, force: np.ndarray, moment: np.ndarray, *, turn_centre: np.ndarray,
-                    axis: np.ndarray, omega: float) -> tuple[np.ndarray, np.ndarray]:
-    """Force and moment in body axes about B, for a body that turns about ``turn_centre`` A with the mesh.
+                    axis: np.ndarray, omega: float,
+                    velocity: np.ndarray | tuple[float, float, float] = (0.0, 0.0, 0.0)) -> tuple[np.ndarray, np.ndarray]:
+    """Force and moment in body axes about B, for a body that moves with the mesh.
 
-    A moving-mesh run in the inertial frame records its loads in the fixed axes, the moment about the fixed
-    point A (OpenFOAM's forces function object has a fixed centre of rotation). At time t the body has
-    turned by omega t about ``axis`` (a unit vector through A) from its position at t = 0, where its axes were
-    the mesh's and B the origin: a body-axis vector is the fixed-axis one turned back, and the moment about
-    B is the one about A less (B - A) x F, with B - A = -A fixed in body axes.
+    A moving-mesh run in the inertial frame records its loads in the fixed axes, the moment about a fixed
+    point (OpenFOAM's forces function object has a fixed centre of rotation). The body either turns about
+    ``turn_centre`` A, the point the moments are taken about, by omega t about ``axis`` (a unit vector through
+    A) from its position at t = 0, where its axes were the mesh's and B the origin; or, with ``omega`` 0 and
+    ``velocity`` V, moves in a straight line, B at V t, the moments taken about B's start A. A body-axis
+    vector is the fixed-axis one turned back, and the moment about B is the one about A less (B - A) x F,
+    with B - A = -A fixed in body axes while turning and -A + V t in fixed axes when translating.
     """
     axis = np.asarray(axis, float) / np.linalg.norm(axis)
-    back = Rotation.from_rotvec(-omega * np.asarray(times, float)[:, None] * axis)  # one rotation per time
-    body_force = back.apply(np.asarray(force, float).reshape(-1, 3))
-    body_moment = back.apply(np.asarray(moment, float).reshape(-1, 3)) - np.cross(-np.asarray(turn_centre, float),
-                                                                                  body_force)
+    times = np.asarray(times, float)
+    back = Rotation.from_rotvec(-omega * times[:, None] * axis)  # one rotation per time
+    force = np.asarray(force, float).reshape(-1, 3)
+    travelled = np.outer(times, np.asarray(velocity, float))  # B's straight-line travel since t = 0
+    body_force = back.apply(force)
+    body_moment = (back.apply(np.asarray(moment, float).reshape(-1, 3) - np.cross(travelled, force))
+                   - np.cross(-np.asarray(turn_centre, float), body_force))
     return body_force.reshape(-1, 3), body_moment.reshape(-1, 3)
