@@ -244,6 +244,7 @@ def _conditions_of_table(path: Path) -> list[dict]:
 
 
 def _derivatives(args: argparse.Namespace) -> int:
+    from .derivatives.extended import extended_payload, extended_terms, write_extended_csv
     from .derivatives.table import derivatives_by_part, fit_parts, fit_sweeps, table_rows, write_table
     from .experiments import DERIVATIVES
     from .report.derivatives import plot_fits
@@ -284,16 +285,54 @@ def _derivatives(args: argparse.Namespace) -> int:
     by_part = derivatives_by_part(fit_parts(results, study.nonlinear, study.fit_offset, study.max_angle_deg))
     _print_by_part(by_part, {row.name: row.value for row in rows})
     stability = _print_stability(study, rows)
+    extended = extended_terms(results, study.nonlinear, study.fit_offset, study.max_angle_deg,
+                              xuu_reference=_xuu_from_resistance(study))
+    _print_extended(extended)
     out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": body,
             **study.solver.record(), "method": study.method, "conditions": len(results),
             "fit": {"nonlinear": study.nonlinear, "offset": study.fit_offset,
                     **({} if study.max_angle_deg is None else {"max_angle_deg": study.max_angle_deg})}}
-    paths = write_table(rows, out, meta, results, stability, by_part)
+    paths = write_table(rows, out, meta, results, stability, by_part, extended_payload(extended))
+    extended_csv = write_extended_csv(extended, out.with_name(f"{out.stem}-extended.csv"))
     reference = DERIVATIVES.get(study.body or "", {}).get("values")
     plot = plot_fits(fits, out.with_suffix(".png"), f"{body}, {study.level} mesh, {setup}", reference)
-    console.print(f"written: {paths[0]}, {paths[1]}, {plot}")
+    console.print(f"written: {paths[0]}, {paths[1]}, {extended_csv}, {plot}")
     return 0
+
+
+def _xuu_from_resistance(study) -> float | None:
+    """The towed resistance measured on the study's body (a SUBOFF configuration) at its speed, as X'uu
+    (negative: a drag), for the extended table; None where nothing was measured at that speed."""
+    from .case import KNOT
+    from .experiments import resistance_interpolated
+    from .forces import PrimeScales
+
+    newtons = resistance_interpolated(study.body, study.speed / KNOT) if study.body else None
+    if newtons is None:
+        return None
+    body = study.workspace.body(study.body, study.body_dir, write=False)
+    scales = PrimeScales(study.case_settings(body).fluid.rho, study.speed, body.reference.length)
+    return -newtons / scales.force
+
+
+def _print_extended(terms) -> None:
+    """The rest of the steady Gertler-Hagen table (see derivatives/extended.py), X'uu beside the towed
+    resistance."""
+    if not terms:
+        return
+    table = Table(title="the rest of the steady table: axial force, the sail's vertical-plane coupling, roll "
+                        "(prime units; measured: the resistance only)")
+    for column in ("term", "value", "std. error", "single-point by magnitude", "points", "odd part (%)",
+                   "experiment", "error (%)"):
+        table.add_column(column, justify="right")
+    for term in terms:
+        table.add_row(term.name, f"{term.value:+.6f}", "-" if math.isnan(term.stderr) else f"{term.stderr:.1e}",
+                      "  ".join(f"{k}: {v:+.6f}" for k, v in term.single_point_by_magnitude.items()),
+                      f"{term.n_points}", "-" if math.isnan(term.odd_part) else f"{100 * term.odd_part:.0f}",
+                      "-" if term.reference is None else f"{term.reference:+.6f}",
+                      "-" if term.error_pct is None else f"{term.error_pct:+.1f}")
+    console.print(table)
 
 
 def _print_by_part(by_part: dict[str, dict[str, float]], totals: dict[str, float]) -> None:

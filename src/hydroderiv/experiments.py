@@ -14,6 +14,8 @@
 
 from __future__ import annotations
 
+import math
+
 # (speed in knots, resistance in N)
 RESISTANCE = {
     "AFF-8": {
@@ -47,4 +49,20 @@ def resistance_at(config: str, speed_knots: float) -> float | None:
     for knots, newtons in RESISTANCE.get(config.upper(), {}).get("points", []):
         if abs(knots - speed_knots) < 0.02:
             return newtons
+    return None
+
+
+def resistance_interpolated(config: str, speed_knots: float) -> float | None:
+    """The measured resistance at this speed: the tabulated point within 0.02 kn, else a power law
+    R = a V^n through the nearest tabulated speeds either side (a towed body's resistance grows nearly as
+    V^2, n = 1.92-1.95 between SUBOFF's lowest two speeds, so the law is close over one such interval);
+    None outside the measured range or for a body without measurements."""
+    exact = resistance_at(config, speed_knots)
+    if exact is not None:
+        return exact
+    points = sorted(RESISTANCE.get(config.upper(), {}).get("points", []))
+    for (v0, r0), (v1, r1) in zip(points, points[1:]):
+        if v0 < speed_knots < v1:
+            exponent = math.log(r1 / r0) / math.log(v1 / v0)
+            return r0 * (speed_knots / v0) ** exponent
     return None

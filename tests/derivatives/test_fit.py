@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from hydroderiv.derivatives import DerivativeFit
+from hydroderiv.derivatives import DerivativeFit, EvenFit
 from hydroderiv.errors import ConfigurationError
 
 
@@ -70,3 +70,32 @@ def test_a_fit_with_no_magnitude_to_spare_passes_through_its_mirror_pairs():
     three = DerivativeFit(nonlinear="abs", fit_offset=True).fit(r3, 0.003 * r3 + 0.5 * r3**3)
     assert three.spare_magnitudes_ == 1 and three.slope_stderr_ > 1e-6
     assert DerivativeFit(nonlinear="none").fit([-0.1, 0.1], [0.001, -0.001]).spare_magnitudes_ == 0
+
+
+def test_the_even_fit_recovers_the_gertler_hagen_axial_force_in_drift_exactly():
+    """X' = X'uu u'^2 + X'vv v'^2 with u' = cos(beta), v' = -sin(beta): both terms come back exactly."""
+    beta = np.radians([-8, -4, 0, 4, 8])
+    u, v = np.cos(beta), -np.sin(beta)
+    x_prime = -0.0013 * u**2 + 0.007 * v**2
+    fit = EvenFit().fit(v, x_prime, u)
+    assert fit is not None and fit.constant_ == pytest.approx(-0.0013, rel=1e-10)
+    assert fit.quadratic_ == pytest.approx(0.007, rel=1e-9)
+    assert fit.quadratic_stderr_ < 1e-12 and fit.n_points_ == 5 and fit.odd_part_ < 1e-9
+    np.testing.assert_allclose(fit.predict(v, u), x_prime, atol=1e-15)
+
+
+def test_the_even_fit_ignores_an_odd_part_of_mirror_pairs_and_says_how_large_it_is():
+    """An odd load on mirror pairs (a mesh's asymmetry) is orthogonal to the even terms: they come back
+    unchanged, and odd_part_ is its size beside the largest even load fitted."""
+    r = np.array([-0.2, -0.1, 0.0, 0.1, 0.2])
+    even = -0.00004 - 0.003 * r**2
+    fit = EvenFit().fit(r, even + 0.1 * 0.003 * 0.04 * r / 0.2)  # odd, a tenth of the even load at r' = 0.2
+    assert fit.constant_ == pytest.approx(-0.00004, rel=1e-9) and fit.quadratic_ == pytest.approx(-0.003, rel=1e-9)
+    assert fit.odd_part_ == pytest.approx(0.1, rel=1e-9)
+
+
+def test_the_even_fit_needs_a_non_zero_magnitude():
+    with pytest.raises(ConfigurationError, match="even load"):
+        EvenFit().fit([0.0, 0.0], [1.0, 1.0])
+    with pytest.raises(ConfigurationError, match="even load"):
+        EvenFit().fit([0.1], [1.0])

@@ -1,5 +1,5 @@
 """Hydrodynamic derivatives from captive conditions: the fitting estimator and single-point definitions."""
 
-from .fit import DerivativeFit
+from .fit import DerivativeFit, EvenFit
 
-__all__ = ["DerivativeFit"]
+__all__ = ["DerivativeFit", "EvenFit"]

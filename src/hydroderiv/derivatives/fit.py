@@ -109,3 +109,46 @@ def _magnitudes(x) -> int:
     """The number of distinct non-zero |x|."""
     x = np.asarray(x, dtype=float)
     return len(np.unique(np.abs(x[x != 0])))
+
+
+class EvenFit:
+    """Least-squares fit of ``y = constant u'^2 + quadratic x^2``: a load even in its motion variable.
+
+    The Gertler-Hagen form of the axial force in drift, X' = X'uu u'^2 + X'vv v'^2, and of the loads that
+    port-starboard mirror symmetry makes even in v' and r' (Z'vv, M'vv, Z'rr, M'rr). ``u`` is the axial
+    velocity ratio u' of each point (1 in a turn, cos of the incidence in drift and pitch). No
+    configuration; :meth:`fit` returns ``self`` with ``constant_``, ``quadratic_``, ``quadratic_stderr_``
+    (NaN without a spare point), ``n_points_`` and ``odd_part_``.
+
+    ``odd_part_`` is how far the mirror pairs (+x, -x) are from equal: half their largest
+    difference, relative to the largest even load ``quadratic x^2`` fitted (NaN without a pair). An even
+    model ignores the odd part of the points, which for a mirror-symmetric body is the mesh's asymmetry and
+    the iterative scatter; this says how large that part is beside what was fitted.
+    """
+
+    def fit(self, x, y, u=None) -> EvenFit:
+        x, y = np.asarray(x, dtype=float), np.asarray(y, dtype=float)
+        u = np.ones_like(x) if u is None else np.asarray(u, dtype=float)
+        if _magnitudes(x) < 1 or len(x) < 2:
+            raise ConfigurationError(f"{len(x)} points at {_magnitudes(x)} non-zero magnitudes cannot determine "
+                                     "an even load's two terms; add conditions to the sweep")
+        design = np.column_stack([u**2, x**2])
+        coef, *_ = np.linalg.lstsq(design, y, rcond=None)
+        residual = y - design @ coef
+        dof = len(x) - 2
+        sigma2 = float(residual @ residual) / dof if dof > 0 else np.nan
+        stderr = np.sqrt(np.diag(sigma2 * np.linalg.inv(design.T @ design)))
+        self.constant_, self.quadratic_ = float(coef[0]), float(coef[1])
+        self.quadratic_stderr_ = float(stderr[1])
+        self.n_points_ = len(x)
+        pairs = [(y[x == m].mean(), y[x == -m].mean()) for m in np.unique(np.abs(x[x != 0]))
+                 if (x == m).any() and (x == -m).any()]
+        even_size = float(np.max(np.abs(self.quadratic_ * x**2)))
+        odd_size = max((abs(plus - minus) / 2 for plus, minus in pairs), default=np.nan)
+        self.odd_part_ = float(odd_size / even_size) if pairs and even_size > 0 else np.nan
+        return self
+
+    def predict(self, x, u=None) -> np.ndarray:
+        x = np.asarray(x, dtype=float)
+        u = np.ones_like(x) if u is None else np.asarray(u, dtype=float)
+        return self.constant_ * u**2 + self.quadratic_ * x**2

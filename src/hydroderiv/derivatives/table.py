@@ -57,6 +57,35 @@ def _on_sweep(condition: Condition, sweep: str) -> bool:
     return all(getattr(condition, k) == 0 for k in SWEEP_KEYS if k != sweep)
 
 
+def sweep_points(results: list[dict], sweep: str, coefficient: str) -> tuple[np.ndarray, ...]:
+    """The points of one sweep, the straight run included: motion variable x, axial ratio u', the
+    coefficient, its window standard deviation (NaN where a record predates it) and each point's value of
+    the sweep as the study gives it (degrees of drift or pitch, r' or q')."""
+    xs, us, ys, stds, values = [], [], [], [], []
+    for record in results:
+        condition = Condition(**record["condition"])
+        if not _on_sweep(condition, sweep):
+            continue
+        x, u = motion_variable(condition, sweep)
+        values.append(getattr(condition, sweep))
+        xs.append(x)
+        us.append(u)
+        ys.append(record["coefficients"][coefficient])
+        window_std = record.get("window_std")
+        stds.append(window_std[COEFFICIENT_NAMES.index(coefficient)] if window_std else np.nan)
+    return tuple(map(np.asarray, (xs, us, ys, stds, values)))
+
+
+def fitted_range(values: np.ndarray, kind: str, max_angle_deg: float | None) -> np.ndarray:
+    """Which points of a sweep a fit takes: a static (drift or pitch) sweep's within ``max_angle_deg``
+    (see :func:`fit_sweeps`), a turn's all."""
+    if max_angle_deg is not None and max_angle_deg <= 0:
+        raise ConfigurationError(f"the fit's max_angle_deg must be positive, not {max_angle_deg}")
+    if kind == "static" and max_angle_deg is not None:
+        return np.abs(values) <= max_angle_deg + 1e-9
+    return np.ones(len(values), dtype=bool)
+
+
 @dataclass
 class DerivativeRow:
     name: str
@@ -98,35 +127,22 @@ class SweepFit:
     sweep_values: np.ndarray
     in_fit: np.ndarray  # which points the fit used (see fit_sweeps' max_angle_deg)
     y_std: np.ndarray | None = None
+    kind: str = "static"  # "static" (drift, pitch) or "rotary" (turns): which single-point definition applies
 
 
 def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = True,
-               max_angle_deg: float | None = None) -> dict[str, SweepFit]:
-    """Fit every derivative whose sweep has enough points. ``results`` are condition result records.
+               max_angle_deg: float | None = None, definitions: dict = DEFINITIONS) -> dict[str, SweepFit]:
+    """Fit every derivative of ``definitions`` (name -> sweep, coefficient, kind; the main table's by
+    default) whose sweep has enough points. ``results`` are condition result records.
 
     ``max_angle_deg`` limits the static (drift and pitch) fits to the points within that angle, so that
     the slope at the origin is not set by a stall at larger angles; the points beyond it are kept in the
     sweep (and in the single points per magnitude) but not fitted. Turns are not limited.
     """
-    if max_angle_deg is not None and max_angle_deg <= 0:
-        raise ConfigurationError(f"the fit's max_angle_deg must be positive, not {max_angle_deg}")
     fits = {}
-    for name, (sweep, coefficient, kind) in DEFINITIONS.items():
-        xs, us, ys, stds, values = [], [], [], [], []
-        for record in results:
-            condition = Condition(**record["condition"])
-            if not _on_sweep(condition, sweep):
-                continue
-            x, u = motion_variable(condition, sweep)
-            values.append(getattr(condition, sweep))
-            xs.append(x)
-            us.append(u)
-            ys.append(record["coefficients"][coefficient])
-            window_std = record.get("window_std")
-            stds.append(window_std[COEFFICIENT_NAMES.index(coefficient)] if window_std else np.nan)
-        xs, us, ys, stds, values = map(np.asarray, (xs, us, ys, stds, values))
-        limited = kind == "static" and max_angle_deg is not None
-        in_fit = np.abs(values) <= max_angle_deg + 1e-9 if limited else np.ones(len(xs), dtype=bool)
+    for name, (sweep, coefficient, kind) in definitions.items():
+        xs, us, ys, stds, values = sweep_points(results, sweep, coefficient)
+        in_fit = fitted_range(values, kind, max_angle_deg)
         estimator = DerivativeFit(nonlinear=nonlinear, fit_offset=fit_offset)
         if not estimator.has_enough_magnitudes(xs[in_fit]):
             # A sweep run at one magnitude (a mirror pair) cannot carry a nonlinear term, but its slope is
@@ -135,7 +151,7 @@ def fit_sweeps(results: list[dict], nonlinear: str = "abs", fit_offset: bool = T
             if not estimator.has_enough_magnitudes(xs[in_fit]):
                 continue  # this sweep was not run
         estimator.fit(xs[in_fit], ys[in_fit], y_std=stds[in_fit])
-        fits[name] = SweepFit(xs, us, ys, estimator, sweep_values=values, in_fit=in_fit, y_std=stds)
+        fits[name] = SweepFit(xs, us, ys, estimator, sweep_values=values, in_fit=in_fit, y_std=stds, kind=kind)
     return fits
 
 
@@ -152,7 +168,7 @@ def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> l
     reference = DERIVATIVES.get(reference_key or "", {}).get("values", {})
     rows = []
     for name, sweep in fits.items():
-        kind = DEFINITIONS[name][2]
+        kind = sweep.kind
         fit, xs, us, ys = sweep.fit, sweep.xs, sweep.us, sweep.ys
         nonzero = xs != 0
         # single-point definitions: static Y'v = Y'/(u'v'); rotary Y'r = Y'/r'
@@ -209,13 +225,13 @@ def body_parts(results: list[dict]) -> list[str]:
 
 
 def fit_parts(results: list[dict], nonlinear: str = "abs", fit_offset: bool = True,
-              max_angle_deg: float | None = None) -> dict[str, dict[str, SweepFit]]:
+              max_angle_deg: float | None = None, definitions: dict = DEFINITIONS) -> dict[str, dict[str, SweepFit]]:
     """Each body part's sweeps, fitted as the whole body's are (:func:`fit_sweeps`): the same points, range
     and nonlinear term. A least-squares slope is linear in the coefficients, so the parts' derivatives add
     up to the body's wherever the parts' loads add up to its load; where a part carries its load decides
     what it contributes (a fin aft of the moment centre, x' < 0, adds to N'r about x'^2 times its Y'v)."""
     return {part: fit_sweeps([{**record, "coefficients": record["components"][part], "window_std": None}
-                              for record in results], nonlinear, fit_offset, max_angle_deg)
+                              for record in results], nonlinear, fit_offset, max_angle_deg, definitions)
             for part in body_parts(results)}
 
 
@@ -239,11 +255,13 @@ def condition_summary(record: dict) -> dict:
 
 
 def write_table(rows: list[DerivativeRow], json_path: str | Path, meta: dict, results: list[dict] = (),
-                stability: dict | None = None, by_part: dict[str, dict[str, float]] | None = None) -> tuple[Path, Path]:
+                stability: dict | None = None, by_part: dict[str, dict[str, float]] | None = None,
+                extended: dict | None = None) -> tuple[Path, Path]:
     """JSON (keys Yv, Nv, ... in prime units, plus details, the conditions' coefficients when ``results``
-    are given, the straight-line ``stability`` the derivatives imply, see :mod:`hydroderiv.simulation`, and
-    each body part's contribution ``by_part``, see :func:`derivatives_by_part`) and CSV beside it, both
-    atomic."""
+    are given, the straight-line ``stability`` the derivatives imply, see :mod:`hydroderiv.simulation`,
+    each body part's contribution ``by_part``, see :func:`derivatives_by_part`, and the rest of the steady
+    table ``extended``, see :func:`hydroderiv.derivatives.extended.extended_payload`) and CSV beside it,
+    both atomic."""
     json_path = Path(json_path)
     payload = {row.name: row.value for row in rows}
     # NaN (no spare points, or records without a window deviation) is written as null: JSON has no NaN
@@ -255,17 +273,24 @@ def write_table(rows: list[DerivativeRow], json_path: str | Path, meta: dict, re
         payload["stability"] = stability
     if by_part:
         payload["by_part"] = by_part
+    if extended:
+        payload["extended"] = extended
     if results:
         payload["conditions"] = [condition_summary(r) for r in results]
     atomic_write_text(json_path, json.dumps(payload, indent=2) + "\n")
+    csv_path = json_path.with_suffix(".csv")
+    write_csv(rows, [*DerivativeRow.__dataclass_fields__, "form_spread"], csv_path)
+    return json_path, csv_path
+
+
+def write_csv(rows: list, columns: list[str], path: Path) -> Path:
+    """One line per row of the attributes ``columns`` (atomic). A dict (the single points per magnitude, the
+    slopes per fit form) goes in one cell, "4:-0.0232 8:-0.0291"."""
     buffer = io.StringIO()
     writer = csv.writer(buffer)
-    columns = [*DerivativeRow.__dataclass_fields__, "form_spread"]
     writer.writerow(columns)
     for row in rows:
-        # the per-magnitude single points (and the slopes per fit form) go in one cell, "4:-0.0232 8:-0.0291"
         writer.writerow([" ".join(f"{k}:{v:.6g}" for k, v in value.items()) if isinstance(value, dict) else value
                          for value in (getattr(row, c) for c in columns)])
-    csv_path = json_path.with_suffix(".csv")
-    atomic_write_text(csv_path, buffer.getvalue())
-    return json_path, csv_path
+    atomic_write_text(path, buffer.getvalue())
+    return path

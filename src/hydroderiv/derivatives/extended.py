@@ -1,0 +1,113 @@
+"""The rest of the steady Gertler-Hagen table, from the conditions a study already runs.
+
+The main table (:mod:`.table`) holds the derivatives the captive-model experiments give for SUBOFF. The
+same straight run, drift, pitch and turn sweeps carry the other steady terms of Gertler & Hagen's (1967)
+equations, which a manoeuvring simulation takes besides them:
+
+- the axial force, even in every motion variable: X' = X'uu u'^2 + X'vv v'^2 in drift, and likewise X'ww
+  (pitch), X'rr and X'qq (turns). X'uu is the straight run's X', minus the towed resistance;
+- the heave force and pitch moment a sail makes in the horizontal plane. Mirror symmetry about the
+  vertical plane reverses v' and r' and leaves Z' and M' as they are, so these are even in v' and r':
+  Z' = Z'* u'^2 + Z'vv v'^2 in drift, likewise M'vv, Z'rr and M'rr; Z'* and M'* are the straight run's;
+- the roll moment, which that mirror reverses with v' and r': K'v and K'r, fitted as the main table's
+  derivatives are (slope, nonlinear term, offset).
+
+A body that is also mirror-symmetric about its horizontal plane (a bare hull, a cruciform stern without a
+sail) has none of the coupling terms: Z'vv, M'vv, Z'rr, M'rr, K'v and K'r vanish, up to its mesh's
+asymmetry. Nothing here was measured for SUBOFF except the resistance, so only X'uu has a reference.
+"""
+
+from __future__ import annotations
+
+from dataclasses import asdict, dataclass, field
+from pathlib import Path
+
+import numpy as np
+
+from ..case.conditions import SWEEP_KEYS
+from .fit import EvenFit
+from .table import fit_sweeps, fitted_range, sweep_points, table_rows, write_csv
+
+# term -> (sweep, coefficient): loads even in the sweep's motion variable
+EVEN_TERMS = {
+    "Xvv": ("drift_deg", "X"),
+    "Xww": ("pitch_deg", "X"),
+    "Xrr": ("yaw_rate_prime", "X"),
+    "Xqq": ("pitch_rate_prime", "X"),
+    "Zvv": ("drift_deg", "Z"),
+    "Mvv": ("drift_deg", "M"),
+    "Zrr": ("yaw_rate_prime", "Z"),
+    "Mrr": ("yaw_rate_prime", "M"),
+}
+# term -> (sweep, coefficient, kind), as the main table's DEFINITIONS: the roll moment, odd in v' and r'
+ROLL_DEFINITIONS = {
+    "Kv": ("drift_deg", "K", "static"),
+    "Kr": ("yaw_rate_prime", "K", "rotary"),
+}
+# term -> coefficient: the straight run's own loads (u' = 1)
+STRAIGHT_TERMS = {"Xuu": "X", "Zstar": "Z", "Mstar": "M"}
+_KIND_OF_SWEEP = {"drift_deg": "static", "pitch_deg": "static", "yaw_rate_prime": "rotary", "pitch_rate_prime": "rotary"}
+
+
+@dataclass
+class ExtendedTerm:
+    name: str
+    value: float
+    kind: str  # "straight" (the straight run's load), "even" (EvenFit) or "odd" (as the main table's fits)
+    n_points: int
+    stderr: float = float("nan")  # from the points' scatter about the fit; NaN without spare points
+    # even: (y - y0 u'^2) / x^2 with y0 the straight run's load; odd: the main table's single points
+    single_point_by_magnitude: dict[str, float] = field(default_factory=dict)
+    odd_part: float = float("nan")  # even terms: see EvenFit.odd_part_
+    reference: float | None = None
+    error_pct: float | None = None
+
+
+def extended_terms(results: list[dict], nonlinear: str = "abs", fit_offset: bool = True,
+                   max_angle_deg: float | None = None, xuu_reference: float | None = None) -> list[ExtendedTerm]:
+    """Every term of this module the study's conditions determine, in the order straight, even, odd.
+
+    Static sweeps are fitted over the same range as the main table's (``max_angle_deg``); ``xuu_reference``
+    is the measured resistance as X'uu (see :func:`hydroderiv.experiments.resistance_interpolated`)."""
+    terms = []
+    straight = next((r["coefficients"] for r in results if _is_straight(r)), None)
+    if straight is not None:
+        for name, coefficient in STRAIGHT_TERMS.items():
+            reference = xuu_reference if name == "Xuu" else None
+            value = float(straight[coefficient])
+            terms.append(ExtendedTerm(name, value, "straight", 1, reference=reference,
+                                      error_pct=None if not reference else 100.0 * (value - reference) / abs(reference)))
+    for name, (sweep, coefficient) in EVEN_TERMS.items():
+        xs, us, ys, _, values = sweep_points(results, sweep, coefficient)
+        inside = fitted_range(values, _KIND_OF_SWEEP[sweep], max_angle_deg)
+        if not (xs[inside] != 0).any() or inside.sum() < 2:
+            continue  # this sweep was not run (or has no second point besides one condition)
+        fit = EvenFit().fit(xs[inside], ys[inside], us[inside])
+        level = float(straight[coefficient]) if straight is not None else fit.constant_
+        nonzero = xs != 0
+        singles = (ys[nonzero] - level * us[nonzero] ** 2) / xs[nonzero] ** 2
+        magnitudes = np.abs(values[nonzero])
+        terms.append(ExtendedTerm(
+            name, fit.quadratic_, "even", fit.n_points_, stderr=fit.quadratic_stderr_,
+            single_point_by_magnitude={f"{m:g}": float(np.mean(singles[magnitudes == m])) for m in np.unique(magnitudes)},
+            odd_part=fit.odd_part_))
+    for row in table_rows(fit_sweeps(results, nonlinear, fit_offset, max_angle_deg, ROLL_DEFINITIONS)):
+        terms.append(ExtendedTerm(row.name, row.value, "odd", row.n_points, stderr=row.stderr,
+                                  single_point_by_magnitude=row.single_point_by_magnitude))
+    return terms
+
+
+def _is_straight(record: dict) -> bool:
+    return all(record["condition"].get(k, 0) == 0 for k in SWEEP_KEYS)
+
+
+def extended_payload(terms: list[ExtendedTerm]) -> dict:
+    """The terms for a derivative table's JSON: name -> value, and each term's details (NaN as null)."""
+    return {"values": {t.name: t.value for t in terms},
+            "details": {t.name: {k: None if isinstance(v, float) and np.isnan(v) else v for k, v in asdict(t).items()}
+                        for t in terms}}
+
+
+def write_extended_csv(terms: list[ExtendedTerm], path: str | Path) -> Path:
+    """The terms as CSV (atomic), one row each."""
+    return write_csv(terms, list(ExtendedTerm.__dataclass_fields__), Path(path))
