@@ -180,3 +180,27 @@ def test_stability_names_what_a_table_lacks(tmp_path, capsys):
     anonymous.write_text(json.dumps({"Yv": -0.02, "meta": {}}))
     assert main(["stability", str(anonymous)]) == 2
     assert "names no body" in capsys.readouterr().out
+
+
+def test_loads_of_a_committed_table_at_a_motion_and_beyond_its_range(tmp_path, capsys):
+    """`loads` evaluates the table's quasi-steady model; a drift of -4 degrees mirrors +4 (Y', N', K' change
+    sign up to the table's zero-incidence offsets, X' stays); beyond the conditions' range it says so."""
+    from pathlib import Path
+
+    root = Path(__file__).parents[1]
+    table = str(root / "validation/derivatives-AFF-8-medium.json")
+    outs = []
+    for drift in ("4", "-4"):
+        out = tmp_path / f"loads{drift}.json"
+        assert main(["loads", table, "--drift-deg", drift, "--out", str(out)]) == 0
+        outs.append(json.loads(out.read_text()))
+    plus, minus = (o["coefficients"] for o in outs)
+    offsets = json.loads(Path(table).read_text())["extended"]["values"]
+    for k in "YNK":
+        assert plus[k] - offsets[f"{k}star"] == pytest.approx(-(minus[k] - offsets[f"{k}star"]), rel=0.02)
+    assert plus["X"] == pytest.approx(minus["X"], rel=1e-3)
+    assert "extrapolated" not in capsys.readouterr().out
+    assert main(["loads", table, "--yaw-rate-prime", "0.5"]) == 0
+    assert "extrapolated beyond the table's range: yaw_rate_prime 0.5" in capsys.readouterr().out.replace("\n", " ")
+    assert main(["loads", str(tmp_path / "loads4.json")]) == 2
+    assert "not a derivative table" in capsys.readouterr().out

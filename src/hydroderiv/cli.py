@@ -425,6 +425,43 @@ def _stability(args: argparse.Namespace) -> int:
     return 0
 
 
+def _loads(args: argparse.Namespace) -> int:
+    """The quasi-steady loads a derivative table gives at one motion (simulation/quasi_steady.py), in the
+    study files' terms: drift and pitch angles, r' and q'."""
+    from .case import Condition
+    from .case.conditions import SWEEP_KEYS
+    from .derivatives.table import motion_variable
+    from .simulation.quasi_steady import QuasiSteadyLoads
+
+    path = Path(args.table)
+    table = _read_table(path)
+    model = QuasiSteadyLoads(table)
+    motion = {"drift_deg": args.drift_deg, "pitch_deg": args.pitch_deg, "yaw_rate_prime": args.yaw_rate_prime,
+              "pitch_rate_prime": args.pitch_rate_prime}
+    condition = Condition(1.0, **motion)
+    v, u = motion_variable(condition, "drift_deg")
+    w, _ = motion_variable(condition, "pitch_deg")
+    loads = model.coefficients(v=v, w=w, r=args.yaw_rate_prime, q=args.pitch_rate_prime, u=u)
+    # the fits hold over the range of the conditions behind them; beyond it the model extrapolates
+    ran = [record["condition"] for record in table.get("conditions") or [] if isinstance(record, dict)]
+    beyond = [f"{key} {value:g} (the table's conditions reach {max(abs(c.get(key, 0)) for c in ran):g})"
+              for key, value in motion.items()
+              if ran and key in SWEEP_KEYS and abs(value) > max(abs(c.get(key, 0)) for c in ran) + 1e-9]
+    table_out = Table(title=f"quasi-steady loads from {path} (prime units): u' {u:.5f}, v' {v:+.5f}, w' {w:+.5f}, "
+                            f"r' {args.yaw_rate_prime:+g}, q' {args.pitch_rate_prime:+g}")
+    for column in ("X'", "Y'", "Z'", "K'", "M'", "N'"):
+        table_out.add_column(column, justify="right")
+    table_out.add_row(*(f"{loads[k]:+.6f}" for k in "XYZKMN"))
+    console.print(table_out)
+    if beyond:
+        console.print("extrapolated beyond the table's range: " + "; ".join(beyond))
+    if args.out:
+        atomic_write_text(Path(args.out), json.dumps({"table": str(path), "motion": motion, "u": u, "v": v, "w": w,
+                                                      "coefficients": loads, "extrapolated": beyond}, indent=2) + "\n")
+        console.print(f"written: {args.out}")
+    return 0
+
+
 def _convergence(args: argparse.Namespace) -> int:
     from .derivatives.convergence import grid_convergence
 
@@ -540,6 +577,16 @@ def build_parser() -> argparse.ArgumentParser:
                       "(default: at the centre of buoyancy)")
     stab.add_argument("--out", help="JSON output")
     stab.set_defaults(func=_stability)
+
+    loads = steps.add_parser("loads", help="the quasi-steady loads a derivative table gives at one motion, for a "
+                             "manoeuvring simulation")
+    loads.add_argument("table", metavar="TABLE_JSON", help="a derivative table written by `study run` or `derivatives`")
+    loads.add_argument("--drift-deg", type=float, default=0.0, help="drift angle beta in degrees (beta > 0: v < 0)")
+    loads.add_argument("--pitch-deg", type=float, default=0.0, help="pitch angle alpha in degrees (alpha > 0: w < 0)")
+    loads.add_argument("--yaw-rate-prime", type=float, default=0.0, help="r' = r L / U (r > 0 turns to starboard)")
+    loads.add_argument("--pitch-rate-prime", type=float, default=0.0, help="q' = q L / U (q > 0 nose up)")
+    loads.add_argument("--out", help="JSON output")
+    loads.set_defaults(func=_loads)
 
     conv = steps.add_parser("convergence", help="grid convergence of derivatives over coarse, medium and fine tables, "
                             "with the Richardson estimate and the validation uncertainty")

@@ -41,7 +41,8 @@ def gertler_hagen_results(asymmetry=0.0):
 def test_each_term_of_the_gertler_hagen_form_comes_back_and_only_xuu_has_a_reference(tmp_path):
     terms = {t.name: t for t in extended_terms(gertler_hagen_results(), xuu_reference=-0.0012)}
     # no pitch sweeps were run, so no X'ww or X'qq
-    assert set(terms) == {"Xuu", "Zstar", "Mstar", "Xvv", "Xrr", "Zvv", "Mvv", "Zrr", "Mrr", "Kv", "Kr"}
+    assert set(terms) == {"Xuu", "Ystar", "Zstar", "Kstar", "Mstar", "Nstar", "Xvv", "Xrr", "Zvv", "Mvv", "Zrr",
+                          "Mrr", "Kv", "Kr"}  # and no interaction terms: no condition combines drift and turn
     expected = {"Xuu": -0.0013, "Zstar": -0.00004, "Mstar": -0.00001, "Xvv": 0.007, "Xrr": 0.0012, "Zvv": 0.09,
                 "Mvv": 0.012, "Zrr": -0.003, "Mrr": -0.001, "Kr": -0.00007}
     for name, value in expected.items():
@@ -137,3 +138,59 @@ def test_the_sails_side_force_leans_forward_with_the_inflow():
     records = [{**r, "coefficients": r["components"]["sail"]} for r in table["conditions"]]
     sail = {t.name: t.value for t in extended_terms(records, max_angle_deg=4.0)}
     assert 0.5 < sail["Xvv"] / -table["by_part"]["Yv"]["sail"] <= 1.0
+
+
+def with_combined_conditions(results, signs=((1, 1), (-1, -1), (1, -1), (-1, 1)), rates=(0.1, 0.2)):
+    """``results`` plus drift of 4 degrees combined with yaw rates, each load the sum of its drift and turn
+    loads less the straight run's, plus an interaction of the Gertler-Hagen forms: X'vr v'r',
+    Y'|v|r |v'|r' + Y'v|r| v'|r'|, K' and N' likewise, Z'vr and M'vr."""
+    loads = {(r["condition"]["drift_deg"], r["condition"]["yaw_rate_prime"]): r["coefficients"] for r in results}
+    out = list(results)
+    for sign_b, sign_r in signs:
+        for rate in rates:
+            beta, r = 4 * sign_b, rate * sign_r
+            c = Condition(3.344, drift_deg=beta, yaw_rate_prime=r)
+            v = (c.body_velocity() / c.speed)[1]
+            interaction = {"X": 0.02 * v * r, "Y": -0.05 * abs(v) * r + 0.01 * v * abs(r), "Z": 0.03 * v * r,
+                           "K": 0.001 * abs(v) * r - 0.0003 * v * abs(r), "M": -0.004 * v * r, "N": 0.02 * abs(v) * r - 0.006 * v * abs(r)}
+            out.append(record(c, **{k: loads[beta, 0][k] + loads[0, r][k] - loads[0, 0][k] + interaction[k]
+                                    for k in "XYZKMN"}))
+    return out
+
+
+def drift_and_turn_results():
+    """Drift at 0 and +-4 degrees and yaw turns at +-0.1 and +-0.2 of some loads, as a study runs them."""
+    out = []
+    for beta in (-4, 0, 4):
+        c = Condition(3.344, drift_deg=beta)
+        v = (c.body_velocity() / c.speed)[1]
+        out.append(record(c, X=-0.0013 + 0.007 * v**2, Y=-0.027 * v, Z=0.09 * v**2, M=0.012 * v**2, N=-0.0135 * v))
+    for r in (-0.2, -0.1, 0.1, 0.2):
+        out.append(record(Condition(3.344, yaw_rate_prime=r), X=-0.0013 + 0.0012 * r**2, Y=0.003 * r,
+                          Z=-0.003 * r**2, M=-0.001 * r**2, N=-0.0037 * r))
+    return out
+
+
+def test_the_drift_turn_interaction_comes_back_from_combined_conditions():
+    terms = {t.name: t for t in extended_terms(with_combined_conditions(drift_and_turn_results()))}
+    expected = {"Xvr": 0.02, "Zvr": 0.03, "Mvr": -0.004, "Y|v|r": -0.05, "Yv|r|": 0.01, "K|v|r": 0.001,
+                "Kv|r|": -0.0003, "N|v|r": 0.02, "Nv|r|": -0.006}
+    for name, value in expected.items():
+        assert terms[name].value == pytest.approx(value, rel=1e-8), name
+        assert terms[name].kind == "interaction" and terms[name].n_points == 8
+    # the single point at a condition is its interaction load over v'r'. At b > 0 (v' < 0) and r' > 0,
+    # |v'|r' = -v'r' and v'|r'| = v'r', so it is Y'v|r| - Y'|v|r; at b > 0 and r' < 0 both forms are -v'r',
+    # so it is -(Y'|v|r + Y'v|r|)
+    assert terms["Y|v|r"].single_point_by_magnitude["b+4 r+0.1"] == pytest.approx(0.01 + 0.05, rel=1e-8)
+    assert terms["Y|v|r"].single_point_by_magnitude["b+4 r-0.1"] == pytest.approx(-(-0.05 + 0.01), rel=1e-8)
+
+
+def test_y_and_n_interactions_need_both_relative_signs_of_drift_and_turn():
+    """With drift outward in every turn (b and r' of one sign, as in a steady turn) |v'|r' and v'|r'| are the
+    same column: the even loads' v'r' terms still come back, Y', K' and N' are left out rather than split at
+    random."""
+    results = with_combined_conditions(drift_and_turn_results(), signs=((1, 1), (-1, -1)))
+    terms = {t.name: t for t in extended_terms(results)}
+    assert {"Xvr", "Zvr", "Mvr"} <= set(terms)
+    assert not {"Y|v|r", "Yv|r|", "K|v|r", "Kv|r|", "N|v|r", "Nv|r|"} & set(terms)
+    assert terms["Zvr"].value == pytest.approx(0.03, rel=1e-8)

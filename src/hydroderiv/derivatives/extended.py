@@ -24,9 +24,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ..case import Condition
 from ..case.conditions import SWEEP_KEYS
-from .fit import EvenFit
-from .table import fit_sweeps, fitted_range, sweep_points, table_rows, write_csv
+from .fit import EvenFit, least_squares
+from .table import fit_sweeps, fitted_range, motion_variable, sweep_points, table_rows, write_csv
 
 # term -> (sweep, coefficient): loads even in the sweep's motion variable
 EVEN_TERMS = {
@@ -44,8 +45,24 @@ ROLL_DEFINITIONS = {
     "Kv": ("drift_deg", "K", "static"),
     "Kr": ("yaw_rate_prime", "K", "rotary"),
 }
-# term -> coefficient: the straight run's own loads (u' = 1)
-STRAIGHT_TERMS = {"Xuu": "X", "Zstar": "Z", "Mstar": "M"}
+# term -> coefficient: the straight run's own loads (u' = 1); all but X'uu vanish on a body with both mirror
+# planes, and Y'*, K'* and N'* on any body with the vertical one: there they are the mesh's asymmetry
+STRAIGHT_TERMS = {"Xuu": "X", "Ystar": "Y", "Zstar": "Z", "Kstar": "K", "Mstar": "M", "Nstar": "N"}
+# term -> (coefficient, form): the drift-turn interaction, from conditions with both drift and yaw rate. The
+# port-starboard mirror, (v', r') -> (-v', -r'), reverses Y', K' and N', whose interaction therefore has the
+# odd forms |v'|r' and v'|r'| (two terms: both signs of r' with each sign of v' tell them apart), and leaves
+# X', Z' and M', whose interaction is v'r'
+INTERACTION_TERMS = {
+    "Xvr": ("X", "vr"),
+    "Zvr": ("Z", "vr"),
+    "Mvr": ("M", "vr"),
+    "Y|v|r": ("Y", "|v|r"),
+    "Yv|r|": ("Y", "v|r|"),
+    "K|v|r": ("K", "|v|r"),
+    "Kv|r|": ("K", "v|r|"),
+    "N|v|r": ("N", "|v|r"),
+    "Nv|r|": ("N", "v|r|"),
+}
 _KIND_OF_SWEEP = {"drift_deg": "static", "pitch_deg": "static", "yaw_rate_prime": "rotary", "pitch_rate_prime": "rotary"}
 
 
@@ -53,12 +70,17 @@ _KIND_OF_SWEEP = {"drift_deg": "static", "pitch_deg": "static", "yaw_rate_prime"
 class ExtendedTerm:
     name: str
     value: float
-    kind: str  # "straight" (the straight run's load), "even" (EvenFit) or "odd" (as the main table's fits)
+    # "straight" (the straight run's load), "even" (EvenFit), "odd" (as the main table's fits) or "interaction"
+    kind: str
     n_points: int
     stderr: float = float("nan")  # from the points' scatter about the fit; NaN without spare points
-    # even: (y - y0 u'^2) / x^2 with y0 the straight run's load; odd: the main table's single points
+    # even: (y - y0 u'^2) / x^2 with y0 the straight run's load; odd: the main table's single points;
+    # interaction: each combined condition's interaction load (see interaction_terms) over its v'r'
     single_point_by_magnitude: dict[str, float] = field(default_factory=dict)
     odd_part: float = float("nan")  # even terms: see EvenFit.odd_part_
+    # odd terms: the fit's nonlinear term, as the main table's (its coefficient, and "abs", "cubic" or "none")
+    nonlinear: float = 0.0
+    nonlinear_term: str = "none"
     reference: float | None = None
     error_pct: float | None = None
 
@@ -93,7 +115,43 @@ def extended_terms(results: list[dict], nonlinear: str = "abs", fit_offset: bool
             odd_part=fit.odd_part_))
     for row in table_rows(fit_sweeps(results, nonlinear, fit_offset, max_angle_deg, ROLL_DEFINITIONS)):
         terms.append(ExtendedTerm(row.name, row.value, "odd", row.n_points, stderr=row.stderr,
-                                  single_point_by_magnitude=row.single_point_by_magnitude))
+                                  single_point_by_magnitude=row.single_point_by_magnitude,
+                                  nonlinear=row.nonlinear, nonlinear_term=row.nonlinear_term))
+    return terms + interaction_terms(results)
+
+
+def interaction_terms(results: list[dict]) -> list[ExtendedTerm]:
+    """The drift-turn interaction terms (INTERACTION_TERMS) from the conditions that combine a drift angle b
+    with a yaw rate r' and nothing else, where the study also ran drift b alone, r' alone and straight ahead.
+    Their interaction load is what the single-variable sweeps leave out,
+
+        I = y(b, r') - y(b, 0) - y(0, r') + y(0, 0),
+
+    fitted by least squares with the term's form (v'r' for X', Z', M'; |v'|r' and v'|r'| together for Y',
+    K' and N', which need conditions with both relative signs of b and r'). None without such conditions."""
+    loads = {(r["condition"]["drift_deg"], r["condition"]["yaw_rate_prime"]): r for r in results
+             if r["condition"].get("pitch_deg", 0) == 0 and r["condition"].get("pitch_rate_prime", 0) == 0}
+    straight = loads.get((0, 0))
+    combined = [key for key in loads if key[0] and key[1] and (key[0], 0) in loads and (0, key[1]) in loads]
+    if straight is None or not combined:
+        return []
+    v = np.array([motion_variable(Condition(**loads[key]["condition"]), "drift_deg")[0] for key in combined])
+    r = np.array([key[1] for key in combined], dtype=float)
+    forms = {"vr": v * r, "|v|r": np.abs(v) * r, "v|r|": v * np.abs(r)}
+    terms = []
+    for coefficient in dict.fromkeys(c for c, _ in INTERACTION_TERMS.values()):
+        names = [name for name, (c, _) in INTERACTION_TERMS.items() if c == coefficient]
+        design = np.column_stack([forms[INTERACTION_TERMS[name][1]] for name in names])
+        if np.linalg.matrix_rank(design) < design.shape[1]:
+            continue  # |v'|r' and v'|r'| coincide where every condition has b and r' of one relative sign
+        y = np.array([loads[b, q]["coefficients"][coefficient] - loads[b, 0]["coefficients"][coefficient]
+                      - loads[0, q]["coefficients"][coefficient] + straight["coefficients"][coefficient]
+                      for b, q in combined])
+        values, stderr = least_squares(design, y)
+        singles = {f"b{b:+g} r{q:+g}": float(load / (vv * rr)) for (b, q), load, vv, rr in zip(combined, y, v, r)}
+        terms += [ExtendedTerm(name, float(value), "interaction", len(y), stderr=float(error),
+                               single_point_by_magnitude=singles)
+                  for name, value, error in zip(names, values, stderr)]
     return terms
 
 

@@ -132,12 +132,7 @@ class EvenFit:
         if _magnitudes(x) < 1 or len(x) < 2:
             raise ConfigurationError(f"{len(x)} points at {_magnitudes(x)} non-zero magnitudes cannot determine "
                                      "an even load's two terms; add conditions to the sweep")
-        design = np.column_stack([u**2, x**2])
-        coef, *_ = np.linalg.lstsq(design, y, rcond=None)
-        residual = y - design @ coef
-        dof = len(x) - 2
-        sigma2 = float(residual @ residual) / dof if dof > 0 else np.nan
-        stderr = np.sqrt(np.diag(sigma2 * np.linalg.inv(design.T @ design)))
+        coef, stderr = least_squares(np.column_stack([u**2, x**2]), y)
         self.constant_, self.quadratic_ = float(coef[0]), float(coef[1])
         self.quadratic_stderr_ = float(stderr[1])
         self.n_points_ = len(x)
@@ -152,3 +147,13 @@ class EvenFit:
         x = np.asarray(x, dtype=float)
         u = np.ones_like(x) if u is None else np.asarray(u, dtype=float)
         return self.constant_ * u**2 + self.quadratic_ * x**2
+
+
+def least_squares(design: np.ndarray, y: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The least-squares coefficients of ``y`` on the columns of ``design`` and their standard errors from
+    the residual variance (NaN with no point to spare)."""
+    coef, *_ = np.linalg.lstsq(design, y, rcond=None)
+    residual = y - design @ coef
+    dof = len(y) - design.shape[1]
+    sigma2 = float(residual @ residual) / dof if dof > 0 else np.nan
+    return coef, np.sqrt(np.diag(sigma2 * np.linalg.inv(design.T @ design)))

@@ -1,0 +1,100 @@
+"""The quasi-steady loads a derivative table implies, for a manoeuvring simulation.
+
+A simulation evaluates the hydrodynamic force and moment at every time step from the body's velocities.
+Steady captive tests give the part that depends on the velocities alone (the acceleration terms, added mass,
+they do not give). From a table written by `hydroderiv derivatives` (or `study run`), in the prime system:
+
+    X' = X'uu u'^2 + X'vv v'^2 + X'ww w'^2 + X'rr r'^2 + X'qq q'^2 + X'vr v'r'
+    Y' = Y'* + Y'v v' + Y'v|v| f(v') + Y'r r' + Y'r|r| f(r') + Y'|v|r |v'|r' + Y'v|r| v'|r'|
+    Z' = Z'* + Z'w w' + Z'w|w| f(w') + Z'q q' + Z'q|q| f(q') + Z'vv v'^2 + Z'rr r'^2 + Z'vr v'r'
+    K' = K'* + K'v v' + K'v|v| f(v') + K'r r' + K'r|r| f(r') + K'|v|r |v'|r' + K'v|r| v'|r'|
+    M' like Z', N' like Y'
+
+with f the nonlinear term each sweep was fitted with (x|x| or x^3, see derivatives/fit.py) and every term the
+table lacks taken as zero. The single-variable sweeps add up; what they leave out when drift and turn come
+together, the interaction terms, comes from combined conditions where the study ran them
+(derivatives/extended.py). The model holds over the range the table was fitted on (the sweeps' largest angle
+and rate); beyond it, it extrapolates.
+"""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+from typing import Mapping
+
+import numpy as np
+
+from ..derivatives.fit import NONLINEAR_TERMS
+from ..errors import HydroderivError
+
+# coefficient -> the fitted odd terms (main table or extended) and the motion variable of each
+_ODD = {
+    "Y": (("Yv", "v"), ("Yr", "r")),
+    "Z": (("Zw", "w"), ("Zq", "q")),
+    "K": (("Kv", "v"), ("Kr", "r")),
+    "M": (("Mw", "w"), ("Mq", "q")),
+    "N": (("Nv", "v"), ("Nr", "r")),
+}
+# coefficient -> the even and interaction terms and their forms in the velocities
+_FORMS = {
+    "X": (("Xvv", "vv"), ("Xww", "ww"), ("Xrr", "rr"), ("Xqq", "qq"), ("Xvr", "vr")),
+    "Y": (("Y|v|r", "|v|r"), ("Yv|r|", "v|r|")),
+    "Z": (("Zvv", "vv"), ("Zrr", "rr"), ("Zvr", "vr")),
+    "K": (("K|v|r", "|v|r"), ("Kv|r|", "v|r|")),
+    "M": (("Mvv", "vv"), ("Mrr", "rr"), ("Mvr", "vr")),
+    "N": (("N|v|r", "|v|r"), ("Nv|r|", "v|r|")),
+}
+_STRAIGHT = {"X": "Xuu", "Y": "Ystar", "Z": "Zstar", "K": "Kstar", "M": "Mstar", "N": "Nstar"}
+
+
+class QuasiSteadyLoads:
+    """The loads of a derivative table as functions of the velocities (see the module's equations).
+
+    ``table`` is the JSON of a derivative table as a mapping; :meth:`from_file` reads one. The terms found
+    are in ``terms`` (name -> (coefficient, nonlinear coefficient, nonlinear form))."""
+
+    def __init__(self, table: Mapping):
+        if not isinstance(table, Mapping):
+            raise HydroderivError("not a derivative table: a JSON object with 'details' or 'extended' is needed")
+        details = dict(table.get("details") or {})
+        extended = dict((table.get("extended") or {}).get("details") or {})
+        if not details and not extended:
+            raise HydroderivError("not a derivative table: it has neither 'details' nor 'extended'")
+        self.terms = {name: (float(d["value"]), float(d.get("nonlinear") or 0.0), d.get("nonlinear_term") or "none")
+                      for name, d in {**details, **extended}.items()}
+        # the straight run's loads; a table written before they were kept falls back on the fits' offsets
+        for coefficient, name in _STRAIGHT.items():
+            if name not in self.terms:
+                offsets = [details[n]["offset"] for n, _ in _ODD.get(coefficient, ()) if n in details]
+                self.terms[name] = (float(np.mean(offsets)) if offsets else 0.0, 0.0, "none")
+
+    @classmethod
+    def from_file(cls, path: str | Path) -> QuasiSteadyLoads:
+        try:
+            return cls(json.loads(Path(path).read_text()))
+        except (OSError, json.JSONDecodeError) as error:
+            raise HydroderivError(f"{path}: cannot read a derivative table ({error})") from None
+
+    def coefficients(self, v: float = 0.0, w: float = 0.0, r: float = 0.0, q: float = 0.0,
+                     u: float = 1.0) -> dict[str, float]:
+        """X', Y', Z', K', M', N' at the velocities u' = u/U, v' = v/U, w' = w/U, r' = rL/U and q' = qL/U
+        (U the table's speed, body axes: x forward, y starboard, z down; q > 0 nose up)."""
+        motion = {"v": v, "w": w, "r": r, "q": q}
+        forms = {"vv": v * v, "ww": w * w, "rr": r * r, "qq": q * q, "vr": v * r, "|v|r": abs(v) * r,
+                 "v|r|": v * abs(r)}
+        loads = {}
+        for coefficient, straight in _STRAIGHT.items():
+            total = self._value(straight) * (u * u if coefficient == "X" else 1.0)
+            for name, variable in _ODD.get(coefficient, ()):
+                if name in self.terms:
+                    slope, nonlinear, form = self.terms[name]
+                    x = motion[variable]
+                    term = NONLINEAR_TERMS.get(form)
+                    total += slope * x + (nonlinear * float(term(np.float64(x))) if term is not None else 0.0)
+            total += sum(self._value(name) * forms[form] for name, form in _FORMS[coefficient])
+            loads[coefficient] = float(total)
+        return loads
+
+    def _value(self, name: str) -> float:
+        return self.terms[name][0] if name in self.terms else 0.0
