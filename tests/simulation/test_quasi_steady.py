@@ -103,3 +103,15 @@ def test_the_axial_force_interaction_is_even_under_the_mirror():
         assert singles[plus] == pytest.approx(singles[minus], rel=0.05)
     mean = sum(singles.values()) / len(singles)
     assert all(value == pytest.approx(mean, rel=0.05) for value in singles.values())
+
+
+def test_a_table_without_the_extended_block_takes_the_straight_run_from_its_conditions():
+    """Tables written before the extended block existed: the straight condition's loads stand in for X'uu,
+    Y'* ... N'*; without conditions X' is unknown (NaN), never a silent zero."""
+    table = json.loads((VALIDATION / "derivatives-AFF-8-medium.json").read_text())
+    old = {k: v for k, v in table.items() if k != "extended"}
+    assert QuasiSteadyLoads(old).coefficients() == pytest.approx(_straight(table), rel=1e-12)
+    bare = {k: v for k, v in old.items() if k != "conditions"}
+    loads = QuasiSteadyLoads(bare).coefficients()
+    assert loads["X"] != loads["X"] and loads["Y"] == pytest.approx(table["details"]["Yv"]["offset"] / 2
+                                                                   + table["details"]["Yr"]["offset"] / 2)

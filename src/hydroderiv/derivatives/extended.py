@@ -5,12 +5,14 @@ same straight run, drift, pitch and turn sweeps carry the other steady terms of 
 equations, which a manoeuvring simulation takes besides them:
 
 - the axial force, even in every motion variable: X' = X'uu u'^2 + X'vv v'^2 in drift, and likewise X'ww
-  (pitch), X'rr and X'qq (turns). X'uu is the straight run's X', minus the towed resistance;
-- the heave force and pitch moment a sail makes in the horizontal plane. Mirror symmetry about the
+  (pitch), X'rr and X'qq (turns). X'uu is the straight run's X', the resistance with a minus sign;
+- the heave force and pitch moment that a sail brings about in the horizontal plane. Mirror symmetry about the
   vertical plane reverses v' and r' and leaves Z' and M' as they are, so these are even in v' and r':
   Z' = Z'* u'^2 + Z'vv v'^2 in drift, likewise M'vv, Z'rr and M'rr; Z'* and M'* are the straight run's;
 - the roll moment, which that mirror reverses with v' and r': K'v and K'r, fitted as the main table's
-  derivatives are (slope, nonlinear term, offset).
+  derivatives are (slope, nonlinear term, offset);
+- where the study also ran conditions that combine drift with a yaw rate, the interaction that the
+  single-variable sweeps leave out (X'vr, Y'|v|r, Y'v|r|, ...; see :func:`interaction_terms`).
 
 A body that is also mirror-symmetric about its horizontal plane (a bare hull, a cruciform stern without a
 sail) has none of the coupling terms: Z'vv, M'vv, Z'rr, M'rr, K'v and K'r vanish, up to its mesh's

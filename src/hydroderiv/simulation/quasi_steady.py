@@ -25,6 +25,7 @@ from typing import Mapping
 
 import numpy as np
 
+from ..case.conditions import SWEEP_KEYS
 from ..derivatives.fit import NONLINEAR_TERMS
 from ..errors import HydroderivError
 
@@ -63,11 +64,21 @@ class QuasiSteadyLoads:
             raise HydroderivError("not a derivative table: it has neither 'details' nor 'extended'")
         self.terms = {name: (float(d["value"]), float(d.get("nonlinear") or 0.0), d.get("nonlinear_term") or "none")
                       for name, d in {**details, **extended}.items()}
-        # the straight run's loads; a table written before they were kept falls back on the fits' offsets
+        # the straight run's loads; a table written before the extended block takes them from its straight
+        # condition, else Y' to N' from the fits' offsets (zero without any) and X' as unknown (NaN): a body
+        # has a drag, so zero would be wrong where the other loads' zero is merely their mirror symmetry
+        straight = next((r["coefficients"] for r in table.get("conditions") or []
+                         if isinstance(r, dict) and not any((r.get("condition") or {}).get(k, 1) for k in SWEEP_KEYS)),
+                        None)
         for coefficient, name in _STRAIGHT.items():
-            if name not in self.terms:
+            if name in self.terms:
+                continue
+            if straight is not None:
+                value = float(straight[coefficient])
+            else:
                 offsets = [details[n]["offset"] for n, _ in _ODD.get(coefficient, ()) if n in details]
-                self.terms[name] = (float(np.mean(offsets)) if offsets else 0.0, 0.0, "none")
+                value = float(np.mean(offsets)) if offsets else (float("nan") if coefficient == "X" else 0.0)
+            self.terms[name] = (value, 0.0, "none")
 
     @classmethod
     def from_file(cls, path: str | Path) -> QuasiSteadyLoads:
