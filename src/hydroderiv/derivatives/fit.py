@@ -71,19 +71,15 @@ class DerivativeFit:
                 f"{n} points at {len(np.unique(np.abs(x)))} distinct magnitudes cannot determine {p} terms; "
                 "add conditions to the sweep"
             )
-        coef, *_ = np.linalg.lstsq(design, y, rcond=None)
+        # standard errors from the residual variance; with no spare points there is none to estimate
+        coef, stderr = least_squares(design, y)
         residual = y - design @ coef
-        dof = n - p
-        # Standard errors from the residual variance; with no spare points there is none to estimate.
-        sigma2 = float(residual @ residual) / dof if dof > 0 else np.nan
-        inverse = np.linalg.inv(design.T @ design)
-        stderr = np.sqrt(np.diag(sigma2 * inverse))
         if y_std is None:
             self.slope_iterative_stderr_ = np.nan
         else:
             # the coefficients are a linear map of y, (D'D)^-1 D' y, so independent point variances carry
             # through as (D'D)^-1 D' diag(s^2) D (D'D)^-1
-            sensitivity = inverse @ design.T
+            sensitivity = np.linalg.inv(design.T @ design) @ design.T
             self.slope_iterative_stderr_ = float(np.sqrt(sensitivity[0] ** 2 @ np.asarray(y_std, dtype=float) ** 2))
         self.slope_, self.slope_stderr_ = float(coef[0]), float(stderr[0])
         has_nonlinear = NONLINEAR_TERMS[self.nonlinear] is not None
