@@ -429,24 +429,22 @@ def _loads(args: argparse.Namespace) -> int:
     """The quasi-steady loads a derivative table gives at one motion (simulation/quasi_steady.py), in the
     study files' terms: drift and pitch angles, r' and q'."""
     from .case import Condition
-    from .case.conditions import SWEEP_KEYS
     from .derivatives.table import motion_variable
     from .simulation.quasi_steady import QuasiSteadyLoads
 
     path = Path(args.table)
     table = _read_table(path)
-    model = QuasiSteadyLoads(table)
     motion = {"drift_deg": args.drift_deg, "pitch_deg": args.pitch_deg, "yaw_rate_prime": args.yaw_rate_prime,
               "pitch_rate_prime": args.pitch_rate_prime}
     condition = Condition(1.0, **motion)
+    loads = QuasiSteadyLoads(table).at(condition)
     v, u = motion_variable(condition, "drift_deg")
     w, _ = motion_variable(condition, "pitch_deg")
-    loads = model.coefficients(v=v, w=w, r=args.yaw_rate_prime, q=args.pitch_rate_prime, u=u)
     # the fits hold over the range of the conditions behind them; beyond it the model extrapolates
     ran = [record["condition"] for record in table.get("conditions") or [] if isinstance(record, dict)]
-    beyond = [f"{key} {value:g} (the table's conditions reach {max(abs(c.get(key, 0)) for c in ran):g})"
-              for key, value in motion.items()
-              if ran and key in SWEEP_KEYS and abs(value) > max(abs(c.get(key, 0)) for c in ran) + 1e-9]
+    reach = {key: max(abs(c.get(key, 0)) for c in ran) for key in motion} if ran else {}
+    beyond = [f"{key} {value:g} (the table's conditions reach {reach[key]:g})"
+              for key, value in motion.items() if reach and abs(value) > reach[key] + 1e-9]
     table_out = Table(title=f"quasi-steady loads from {path} (prime units): u' {u:.5f}, v' {v:+.5f}, w' {w:+.5f}, "
                             f"r' {args.yaw_rate_prime:+g}, q' {args.pitch_rate_prime:+g}")
     for column in ("X'", "Y'", "Z'", "K'", "M'", "N'"):

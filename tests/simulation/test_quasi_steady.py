@@ -6,24 +6,11 @@ from pathlib import Path
 import pytest
 
 from hydroderiv.case import Condition
-from hydroderiv.derivatives.table import motion_variable
+from hydroderiv.derivatives.table import straight_loads
 from hydroderiv.errors import HydroderivError
 from hydroderiv.simulation.quasi_steady import QuasiSteadyLoads
 
 VALIDATION = Path(__file__).parents[2] / "validation"
-
-
-def _velocities(condition: dict) -> dict[str, float]:
-    c = Condition(**condition)
-    v, u = motion_variable(c, "drift_deg")
-    w, _ = motion_variable(c, "pitch_deg")
-    return {"u": u, "v": v, "w": w, "r": c.yaw_rate_prime, "q": c.pitch_rate_prime}
-
-
-def _straight(table: dict) -> dict[str, float]:
-    """The straight run's loads among a table's conditions."""
-    return next(r["coefficients"] for r in table["conditions"]
-                if not any(r["condition"][k] for k in ("drift_deg", "pitch_deg", "yaw_rate_prime", "pitch_rate_prime")))
 
 
 def test_an_exact_table_gives_its_gertler_hagen_loads():
@@ -64,11 +51,11 @@ def test_the_table_of_record_gives_back_the_loads_it_was_fitted_to(body, coeffic
     table adds six conditions of drift and turn together, which the interaction terms take in."""
     table = json.loads((VALIDATION / f"derivatives-{body}.json").read_text())
     model = QuasiSteadyLoads(table)
-    straight = _straight(table)
+    straight = straight_loads(table["conditions"])
     for coefficient in coefficients:
         scale = max(abs(r["coefficients"][coefficient] - straight[coefficient]) for r in table["conditions"])
         for record in table["conditions"]:
-            predicted = model.coefficients(**_velocities(record["condition"]))[coefficient]
+            predicted = model.at(Condition(**record["condition"]))[coefficient]
             assert abs(predicted - record["coefficients"][coefficient]) < 0.08 * scale, (record["name"], coefficient)
 
 
@@ -87,8 +74,9 @@ def test_drift_and_turn_together_need_the_interaction_terms():
     combined = [r for r in table["conditions"] if r["condition"]["drift_deg"] and r["condition"]["yaw_rate_prime"]]
     assert len(combined) == 6
     for coefficient in "XYKMN":
-        scale = max(abs(r["coefficients"][coefficient] - _straight(table)[coefficient]) for r in table["conditions"])
-        misses = [max(abs(model.coefficients(**_velocities(r["condition"]))[coefficient] - r["coefficients"][coefficient])
+        scale = max(abs(r["coefficients"][coefficient] - straight_loads(table["conditions"])[coefficient])
+                    for r in table["conditions"])
+        misses = [max(abs(model.at(Condition(**r["condition"]))[coefficient] - r["coefficients"][coefficient])
                       for r in combined) / scale for model in (sweeps_only, full)]
         assert misses[1] < 0.5 * misses[0], (coefficient, misses)
 
@@ -110,7 +98,7 @@ def test_a_table_without_the_extended_block_takes_the_straight_run_from_its_cond
     Y'* ... N'*; without conditions X' is unknown (NaN), never a silent zero."""
     table = json.loads((VALIDATION / "derivatives-AFF-8-medium.json").read_text())
     old = {k: v for k, v in table.items() if k != "extended"}
-    assert QuasiSteadyLoads(old).coefficients() == pytest.approx(_straight(table), rel=1e-12)
+    assert QuasiSteadyLoads(old).coefficients() == pytest.approx(straight_loads(table["conditions"]), rel=1e-12)
     bare = {k: v for k, v in old.items() if k != "conditions"}
     loads = QuasiSteadyLoads(bare).coefficients()
     assert loads["X"] != loads["X"] and loads["Y"] == pytest.approx(table["details"]["Yv"]["offset"] / 2

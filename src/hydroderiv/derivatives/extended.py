@@ -27,9 +27,9 @@ from pathlib import Path
 import numpy as np
 
 from ..case import Condition
-from ..case.conditions import SWEEP_KEYS
 from .fit import EvenFit, least_squares
-from .table import fit_sweeps, fitted_range, motion_variable, sweep_points, table_rows, write_csv
+from .table import (DEFINITIONS, fit_sweeps, fitted_range, motion_variable, straight_loads, sweep_points, table_rows,
+                    write_csv)
 
 # term -> (sweep, coefficient): loads even in the sweep's motion variable
 EVEN_TERMS = {
@@ -65,7 +65,8 @@ INTERACTION_TERMS = {
     "N|v|r": ("N", "|v|r"),
     "Nv|r|": ("N", "v|r|"),
 }
-_KIND_OF_SWEEP = {"drift_deg": "static", "pitch_deg": "static", "yaw_rate_prime": "rotary", "pitch_rate_prime": "rotary"}
+# sweep -> "static" or "rotary", as the main table's definitions have it
+_KIND_OF_SWEEP = {sweep: kind for sweep, _, kind in DEFINITIONS.values()}
 
 
 @dataclass
@@ -94,7 +95,7 @@ def extended_terms(results: list[dict], nonlinear: str = "abs", fit_offset: bool
     Static sweeps are fitted over the same range as the main table's (``max_angle_deg``); ``xuu_reference``
     is the measured resistance as X'uu (see :func:`hydroderiv.experiments.resistance_interpolated`)."""
     terms = []
-    straight = next((r["coefficients"] for r in results if _is_straight(r)), None)
+    straight = straight_loads(results)
     if straight is not None:
         for name, coefficient in STRAIGHT_TERMS.items():
             reference = xuu_reference if name == "Xuu" else None
@@ -155,10 +156,6 @@ def interaction_terms(results: list[dict]) -> list[ExtendedTerm]:
                                single_point_by_magnitude=singles)
                   for name, value, error in zip(names, values, stderr)]
     return terms
-
-
-def _is_straight(record: dict) -> bool:
-    return all(record["condition"].get(k, 0) == 0 for k in SWEEP_KEYS)
 
 
 def extended_payload(terms: list[ExtendedTerm]) -> dict:

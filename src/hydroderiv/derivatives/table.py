@@ -57,6 +57,13 @@ def _on_sweep(condition: Condition, sweep: str) -> bool:
     return all(getattr(condition, k) == 0 for k in SWEEP_KEYS if k != sweep)
 
 
+def straight_loads(results: list[dict]) -> dict[str, float] | None:
+    """The straight run's coefficients among condition records (every sweep variable zero); None if the
+    records have none."""
+    return next((record["coefficients"] for record in results
+                 if all(record["condition"].get(k, 0) == 0 for k in SWEEP_KEYS)), None)
+
+
 def sweep_points(results: list[dict], sweep: str, coefficient: str) -> tuple[np.ndarray, ...]:
     """The points of one sweep, the straight run included: motion variable x, axial ratio u', the
     coefficient, its window standard deviation (NaN where a record predates it) and each point's value of

@@ -25,28 +25,24 @@ from typing import Mapping
 
 import numpy as np
 
-from ..case.conditions import SWEEP_KEYS
+from ..case import Condition
+from ..derivatives.extended import EVEN_TERMS, INTERACTION_TERMS, ROLL_DEFINITIONS, STRAIGHT_TERMS
 from ..derivatives.fit import NONLINEAR_TERMS
+from ..derivatives.table import DEFINITIONS, motion_variable, straight_loads
 from ..errors import HydroderivError
 
-# coefficient -> the fitted odd terms (main table or extended) and the motion variable of each
-_ODD = {
-    "Y": (("Yv", "v"), ("Yr", "r")),
-    "Z": (("Zw", "w"), ("Zq", "q")),
-    "K": (("Kv", "v"), ("Kr", "r")),
-    "M": (("Mw", "w"), ("Mq", "q")),
-    "N": (("Nv", "v"), ("Nr", "r")),
-}
-# coefficient -> the even and interaction terms and their forms in the velocities
-_FORMS = {
-    "X": (("Xvv", "vv"), ("Xww", "ww"), ("Xrr", "rr"), ("Xqq", "qq"), ("Xvr", "vr")),
-    "Y": (("Y|v|r", "|v|r"), ("Yv|r|", "v|r|")),
-    "Z": (("Zvv", "vv"), ("Zrr", "rr"), ("Zvr", "vr")),
-    "K": (("K|v|r", "|v|r"), ("Kv|r|", "v|r|")),
-    "M": (("Mvv", "vv"), ("Mrr", "rr"), ("Mvr", "vr")),
-    "N": (("N|v|r", "|v|r"), ("Nv|r|", "v|r|")),
-}
-_STRAIGHT = {"X": "Xuu", "Y": "Ystar", "Z": "Zstar", "K": "Kstar", "M": "Mstar", "N": "Nstar"}
+_VARIABLE = {"drift_deg": "v", "pitch_deg": "w", "yaw_rate_prime": "r", "pitch_rate_prime": "q"}
+# coefficient -> the straight run's term; (term, motion variable) of the fitted odd terms (main table and
+# roll); (term, form) of the even ("vv", ...) and interaction terms: all from the derivatives' definitions
+_STRAIGHT = {coefficient: name for name, coefficient in STRAIGHT_TERMS.items()}
+_ODD: dict[str, list[tuple[str, str]]] = {}
+for _name, (_sweep, _coefficient, _) in {**DEFINITIONS, **ROLL_DEFINITIONS}.items():
+    _ODD.setdefault(_coefficient, []).append((_name, _VARIABLE[_sweep]))
+_FORMS: dict[str, list[tuple[str, str]]] = {coefficient: [] for coefficient in _STRAIGHT}
+for _name, (_sweep, _coefficient) in EVEN_TERMS.items():
+    _FORMS[_coefficient].append((_name, 2 * _VARIABLE[_sweep]))
+for _name, (_coefficient, _form) in INTERACTION_TERMS.items():
+    _FORMS[_coefficient].append((_name, _form))
 
 
 class QuasiSteadyLoads:
@@ -67,9 +63,7 @@ class QuasiSteadyLoads:
         # the straight run's loads; a table written before the extended block takes them from its straight
         # condition, else Y' to N' from the fits' offsets (zero without any) and X' as unknown (NaN): a body
         # has a drag, so zero would be wrong where the other loads' zero is merely their mirror symmetry
-        straight = next((r["coefficients"] for r in table.get("conditions") or []
-                         if isinstance(r, dict) and not any((r.get("condition") or {}).get(k, 1) for k in SWEEP_KEYS)),
-                        None)
+        straight = straight_loads(table.get("conditions") or [])
         for coefficient, name in _STRAIGHT.items():
             if name in self.terms:
                 continue
@@ -106,6 +100,12 @@ class QuasiSteadyLoads:
             total += sum(self._value(name) * forms[form] for name, form in _FORMS[coefficient])
             loads[coefficient] = float(total)
         return loads
+
+    def at(self, condition: Condition) -> dict[str, float]:
+        """:meth:`coefficients` at a condition as a study gives it (drift and pitch in degrees, r', q')."""
+        v, u = motion_variable(condition, "drift_deg")
+        w, _ = motion_variable(condition, "pitch_deg")
+        return self.coefficients(v=v, w=w, r=condition.yaw_rate_prime, q=condition.pitch_rate_prime, u=u)
 
     def _value(self, name: str) -> float:
         return self.terms[name][0] if name in self.terms else 0.0
