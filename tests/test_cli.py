@@ -162,6 +162,9 @@ def test_stability_of_a_committed_table_for_its_own_body_or_a_given_mass(tmp_pat
     assert "horizontal" in capsys.readouterr().out
     report = json.loads(out.read_text())
     for key, value in table["stability"]["horizontal"]["computed"].items():
+        if key == "motion":  # the roots, with the added mass the table records
+            assert report["horizontal"]["computed"][key]["growth_rate"] == pytest.approx(value["growth_rate"], rel=1e-6)
+            continue
         assert report["horizontal"]["computed"][key] == (pytest.approx(value, rel=1e-6) if isinstance(value, float) else value)
 
     assert main(["stability", str(table_path), "--mass-prime", "0.03", "--xg-prime", "0", "--out", str(out)]) == 0
@@ -204,3 +207,28 @@ def test_loads_of_a_committed_table_at_a_motion_and_beyond_its_range(tmp_path, c
     assert "extrapolated beyond the table's range: yaw_rate_prime 0.5" in capsys.readouterr().out.replace("\n", " ")
     assert main(["loads", str(tmp_path / "loads4.json")]) == 2
     assert "not a derivative table" in capsys.readouterr().out
+
+
+def test_manoeuvre_of_a_committed_table_writes_the_motion_and_flags_its_range(tmp_path, capsys):
+    """`manoeuvre` simulates the table's body, trimmed neutrally buoyant, with the added mass estimated from
+    its shape: starboard and port disturbances give mirror-image tracks; the turn that the unstable AFF-8
+    develops leaves the table's range, and the command says so; bad requests are named."""
+    import csv
+    from pathlib import Path
+
+    table = str(Path(__file__).parents[1] / "validation/derivatives-AFF-8-medium.json")
+    tracks = []
+    for rate in ("0.01", "-0.01"):
+        out = tmp_path / f"track{rate}.csv"
+        assert main(["manoeuvre", table, "--yaw-rate-prime", rate, "--lengths", "10", "--without-straight-offsets",
+                     "--out", str(out)]) == 0
+        tracks.append(list(csv.DictReader(out.open())))
+    printed = capsys.readouterr().out.replace("\n", " ")
+    assert "doubles in" in printed and "beyond the table's conditions" in printed
+    starboard, port = tracks
+    assert len(starboard) == 101 and float(starboard[-1]["t"]) == pytest.approx(10.0)
+    assert float(starboard[-1]["y"]) > 0.5 and float(port[-1]["y"]) == pytest.approx(-float(starboard[-1]["y"]), rel=1e-6)
+    assert main(["manoeuvre", table, "--bg-m", "0.02"]) == 2
+    assert "--bg-m acts in pitch" in capsys.readouterr().out
+    assert main(["manoeuvre", table, "--lengths", "-1"]) == 2
+    assert "positive number of body lengths" in capsys.readouterr().out

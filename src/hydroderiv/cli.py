@@ -284,16 +284,18 @@ def _derivatives(args: argparse.Namespace) -> int:
     console.print(table)
     by_part = derivatives_by_part(fit_parts(results, study.nonlinear, study.fit_offset, study.max_angle_deg))
     _print_by_part(by_part, {row.name: row.value for row in rows})
-    stability = _print_stability(study, rows)
+    vehicle = study.workspace.body(study.body, study.body_dir, write=False)
     extended = extended_terms(results, study.nonlinear, study.fit_offset, study.max_angle_deg,
-                              xuu_reference=_xuu_from_resistance(study))
+                              xuu_reference=_xuu_from_resistance(study, vehicle))
     _print_extended(extended)
+    acceleration = _print_acceleration(vehicle)
+    stability = _print_stability(study, rows, vehicle, acceleration)
     out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": body,
             **study.solver.record(), "method": study.method, "conditions": len(results),
             "fit": {"nonlinear": study.nonlinear, "offset": study.fit_offset,
                     **({} if study.max_angle_deg is None else {"max_angle_deg": study.max_angle_deg})}}
-    paths = write_table(rows, out, meta, results, stability, by_part, extended_payload(extended))
+    paths = write_table(rows, out, meta, results, stability, by_part, extended_payload(extended), acceleration.as_dict())
     extended_csv = write_extended_csv(extended, out.with_name(f"{out.stem}-extended.csv"))
     reference = DERIVATIVES.get(study.body or "", {}).get("values")
     plot = plot_fits(fits, out.with_suffix(".png"), f"{body}, {study.level} mesh, {setup}", reference)
@@ -301,7 +303,7 @@ def _derivatives(args: argparse.Namespace) -> int:
     return 0
 
 
-def _xuu_from_resistance(study) -> float | None:
+def _xuu_from_resistance(study, body) -> float | None:
     """The towed resistance measured on the study's body (a SUBOFF configuration) at its speed, as X'uu
     (negative: a drag), for the extended table; None where nothing was measured at that speed."""
     from .case import KNOT
@@ -311,9 +313,26 @@ def _xuu_from_resistance(study) -> float | None:
     newtons = resistance_interpolated(study.body, study.speed / KNOT) if study.body else None
     if newtons is None:
         return None
-    body = study.workspace.body(study.body, study.body_dir, write=False)
     scales = PrimeScales(study.case_settings(body).fluid.rho, study.speed, body.reference.length)
     return -newtons / scales.force
+
+
+def _print_acceleration(body):
+    """Estimate, print and return the body's acceleration derivatives (derivatives/added_mass.py)."""
+    from .derivatives.added_mass import acceleration_derivatives
+
+    estimate = acceleration_derivatives(body)
+    f = estimate.factors
+    table = Table(title="acceleration derivatives (added mass), estimated from the shape: strip theory with the "
+                        f"equivalent spheroid's 3-D factors (translation {f['translation']:.3f}, coupling "
+                        f"{f['coupling']:.3f}, rotation {f['rotation']:.3f}); not measured by the captive conditions")
+    for column in ("term", "value", "strip theory"):
+        table.add_column(column, justify="right")
+    for name, value in estimate.values.items():
+        strip = estimate.strip.get(name)
+        table.add_row(name, f"{value:+.6f}", "-" if strip is None else f"{strip:+.6f}")
+    console.print(table)
+    return estimate
 
 
 def _print_extended(terms) -> None:
@@ -352,48 +371,86 @@ def _print_by_part(by_part: dict[str, dict[str, float]], totals: dict[str, float
     console.print(table)
 
 
-def _print_stability(study, rows) -> dict | None:
+def _print_stability(study, rows, body, acceleration) -> dict | None:
     """Print and return the straight-line stability the table implies (None if no plane has all four
-    derivatives), beside the experiment's from its own derivatives with the same mass."""
+    derivatives), beside the experiment's from its own derivatives with the same mass and added mass."""
     from .simulation.stability import MassProperties
 
-    mass = MassProperties.neutrally_buoyant(study.workspace.body(study.body, study.body_dir, write=False))
-    return _stability_report({r.name: r.value for r in rows}, {r.name: r.stderr for r in rows}, mass, study.body)
+    return _stability_report({r.name: r.value for r in rows}, {r.name: r.stderr for r in rows},
+                             MassProperties.neutrally_buoyant(body), study.body, acceleration.values)
 
 
-def _stability_report(values: dict, stderr: dict, mass, body_key: str | None) -> dict | None:
+def _stability_report(values: dict, stderr: dict, mass, body_key: str | None, acceleration: dict) -> dict | None:
     """Print the stability of every plane ``values`` completes, beside the experiment's for ``body_key``
     (a SUBOFF configuration) with the same mass, and return the report; None if no plane is complete."""
     from .experiments import DERIVATIVES
     from .simulation.stability import stability_report
 
     reference = DERIVATIVES.get(body_key or "", {}).get("values")
-    report = stability_report(values, stderr, mass, reference)
+    report = stability_report(values, stderr, mass, reference, acceleration)
     planes = [p for p in report if p != "mass"]
     if not planes:
         return None
-    table = Table(title=f"straight-line stability, controls fixed (m' = {mass.mass_prime:.5f}, x_G' = {mass.xg_prime:+.5f}: "
-                        f"{mass.source}; stable if C > 0; G = 1 - static lever / damping lever)")
-    for column in ("plane", "C", "G", "std. error", "static lever", "damping lever", "stable",
-                   "experiment G", "exp. static lever", "exp. damping lever"):
+    inertia = "" if mass.iz_prime is None else f", I'z = {mass.iz_prime:.6f}, I'y = {mass.iy_prime:.6f}"
+    table = Table(title=f"straight-line stability, controls fixed (m' = {mass.mass_prime:.5f}, x_G' = {mass.xg_prime:+.5f}"
+                        f"{inertia}: {mass.source}; stable if C > 0; G = 1 - static lever / damping lever; "
+                        "a disturbance doubles (or halves) over the given body lengths)")
+    for column in ("plane", "C", "G", "std. error", "static lever", "damping lever", "stable", "doubles / halves in (L)",
+                   "experiment G", "exp. static lever", "exp. damping lever", "exp. doubles / halves in (L)"):
         table.add_column(column, justify="right")
+
+    def lengths(result: dict | None) -> str:
+        motion = (result or {}).get("motion")
+        if motion is None:
+            return "-"
+        return (f"doubles in {motion['doubling_lengths']:.2f}" if motion["doubling_lengths"] is not None
+                else f"halves in {motion['halving_lengths']:.2f}")
+
     for plane in planes:
         c, e = report[plane]["computed"], report[plane]["experiment"]
         table.add_row(plane, f"{c['criterion']:+.3e}", f"{c['index']:+.3f}",
                       "-" if c["index_stderr"] is None else f"{c['index_stderr']:.3f}",
                       f"{c['static_lever']:+.3f}", f"{c['damping_lever']:+.3f}", "yes" if c["stable"] else "no",
+                      lengths(c),
                       *(("-",) * 3 if e is None else (f"{e['index']:+.3f}", f"{e['static_lever']:+.3f}",
-                                                      f"{e['damping_lever']:+.3f}")))
+                                                      f"{e['damping_lever']:+.3f}")), lengths(e))
     console.print(table)
     return report
 
 
-def _stability(args: argparse.Namespace) -> int:
-    """The straight-line stability of a committed derivative table, for the table's body trimmed neutrally
-    buoyant or for the mass and centre of gravity a designer gives."""
+def _table_vehicle(path: Path, table: dict, args: argparse.Namespace):
+    """The mass properties (the table's body trimmed neutrally buoyant, or what the command line gives) and
+    the acceleration derivatives (the table's, else estimated from its body; None without a body) for
+    `stability` and `manoeuvre`."""
     from dataclasses import replace
 
-    from .simulation.stability import PLANES, MassProperties
+    from .derivatives.added_mass import acceleration_derivatives
+    from .simulation.stability import MassProperties
+
+    body_key = table.get("meta", {}).get("body")
+    body = None
+    if body_key is not None:
+        body = suboff_body(body_key) if body_key.upper() in CONFIGURATIONS else Body.read(body_key)
+    given = {"mass_prime": args.mass_prime, "xg_prime": args.xg_prime, "iz_prime": args.iz_prime,
+             "iy_prime": args.iy_prime}
+    given = {k: v for k, v in given.items() if v is not None}
+    if body is None:
+        if "mass_prime" not in given or "xg_prime" not in given:
+            raise HydroderivError(f"{path}: the table names no body (meta.body); give --mass-prime and --xg-prime")
+        mass = MassProperties(source="given on the command line", **given)
+    else:
+        mass = MassProperties.neutrally_buoyant(body)
+        if given:
+            mass = replace(mass, **given, source=f"{mass.source}, with the given {', '.join(given)}")
+    recorded = (table.get("acceleration") or {}).get("values")
+    acceleration = recorded if recorded else (acceleration_derivatives(body).values if body is not None else None)
+    return body_key, mass, acceleration
+
+
+def _stability(args: argparse.Namespace) -> int:
+    """The straight-line stability of a committed derivative table, for the table's body trimmed neutrally
+    buoyant or for the mass, centre of gravity and inertia a designer gives."""
+    from .simulation.stability import PLANES
 
     path = Path(args.table)
     table = _read_table(path)
@@ -402,25 +459,81 @@ def _stability(args: argparse.Namespace) -> int:
     values = {k: table[k] for k in names if isinstance(table.get(k), (int, float))}
     stderr = {k: details[k]["stderr"] for k in values if isinstance(details.get(k), dict)
               and isinstance(details[k].get("stderr"), (int, float))}
-    body_key = table.get("meta", {}).get("body")
-    if args.mass_prime is not None and args.xg_prime is not None:
-        mass = MassProperties(args.mass_prime, args.xg_prime, "given on the command line")
-    else:
-        if body_key is None:
-            raise HydroderivError(f"{path}: the table names no body (meta.body); give --mass-prime and --xg-prime")
-        body = suboff_body(body_key) if body_key.upper() in CONFIGURATIONS else Body.read(body_key)
-        mass = MassProperties.neutrally_buoyant(body)
-        if args.mass_prime is not None or args.xg_prime is not None:
-            mass = replace(mass, mass_prime=mass.mass_prime if args.mass_prime is None else args.mass_prime,
-                           xg_prime=mass.xg_prime if args.xg_prime is None else args.xg_prime,
-                           source=f"{mass.source}, with the given " + ("m'" if args.mass_prime is not None else "x_G'"))
-    report = _stability_report(values, stderr, mass, body_key)
+    body_key, mass, acceleration = _table_vehicle(path, table, args)
+    report = _stability_report(values, stderr, mass, body_key, acceleration)
     if report is None:
         needs = "; ".join(f"{plane}: {', '.join(keys)}" for plane, keys in PLANES.items())
         raise HydroderivError(f"{path}: no plane has all four derivatives ({needs}); the table has "
                               f"{', '.join(values) or 'none of them'}")
     if args.out:
         atomic_write_text(Path(args.out), json.dumps({"table": str(path), **report}, indent=2) + "\n")
+        console.print(f"written: {args.out}")
+    return 0
+
+
+def _manoeuvre(args: argparse.Namespace) -> int:
+    """Controls-fixed motion in one plane from a derivative table (simulation/manoeuvre.py), from straight
+    motion at the table's speed disturbed by a drift (pitch) angle, a rate or a heading (pitch) angle."""
+    import csv
+    import io
+
+    from .simulation.manoeuvre import GRAVITY, ManoeuvreSimulation, table_reach
+    from .simulation.quasi_steady import QuasiSteadyLoads
+    from .simulation.stability import PLANES, plane_motion
+
+    path = Path(args.table)
+    table = _read_table(path)
+    body_key, mass, acceleration = _table_vehicle(path, table, args)
+    if acceleration is None:
+        raise HydroderivError(f"{path}: no acceleration derivatives: the table names no body to estimate them from")
+    meta = table.get("meta", {})
+    horizontal = args.plane == "horizontal"
+    if args.bg_m:
+        if horizontal:
+            raise HydroderivError("--bg-m acts in pitch: use it with --plane vertical")
+        if body_key is None or not isinstance(meta.get("speed_m_s"), (int, float)):
+            raise HydroderivError(f"{path}: --bg-m needs the table's body and speed (meta.body, meta.speed_m_s)")
+    angle = math.radians(args.drift_deg if horizontal else args.pitch_deg)
+    rate = args.yaw_rate_prime if horizontal else args.pitch_rate_prime
+    hydrostatic = 0.0
+    if args.bg_m:
+        body = suboff_body(body_key) if body_key.upper() in CONFIGURATIONS else Body.read(body_key)
+        length = body.reference.length
+        hydrostatic = 2.0 * GRAVITY * body.reference.volume * args.bg_m / (meta["speed_m_s"] ** 2 * length**3)
+    simulation = ManoeuvreSimulation(QuasiSteadyLoads(table), acceleration, mass, args.plane, table_reach(table),
+                                     hydrostatic, straight_offsets=not args.without_straight_offsets)
+    # drift beta > 0 and pitch alpha > 0 are v < 0 and w < 0 (the study files' convention)
+    trajectory = simulation.run(args.lengths, lateral=-math.sin(angle), rate=rate, heading=math.radians(args.heading_deg),
+                                surge=math.cos(angle))
+    names = list(trajectory.states)
+    lateral, rate_name, angle_name = names[1], names[2], names[5]
+    out_table = Table(title=f"controls-fixed motion in the {args.plane} plane from {path} (prime units: time and "
+                            f"positions in L, velocities in U, rates in U/L; angles in degrees)")
+    for column in ("t'", "u'", f"{lateral}'", f"{rate_name}'", "drift" if horizontal else "incidence",
+                   angle_name, "x'", names[4] + "'"):
+        out_table.add_column(column, justify="right")
+    step = max(1, len(trajectory.time) // 10)
+    for k in range(0, len(trajectory.time), step):
+        state = {n: trajectory.states[n][k] for n in names}
+        out_table.add_row(f"{trajectory.time[k]:.1f}", f"{state['u']:.4f}", f"{state[lateral]:+.5f}",
+                          f"{state[rate_name]:+.5f}", f"{math.degrees(math.atan2(-state[lateral], state['u'])):+.2f}",
+                          f"{math.degrees(state[angle_name]):+.2f}", f"{state['x']:.3f}", f"{state[names[4]]:+.3f}")
+    console.print(out_table)
+    if all(isinstance(table.get(k), (int, float)) for k in PLANES[args.plane]):
+        motion = plane_motion(table, acceleration, args.plane, mass)
+        roots = ", ".join(f"{r.real:+.4f}" + (f" {r.imag:+.4f}i" if r.imag else "") for r in motion.roots)
+        console.print(f"linearised: roots {roots} per L travelled; "
+                      + (f"a disturbance doubles in {motion.doubling_lengths:.2f} L" if motion.doubling_lengths
+                         else f"the slowest disturbance halves in {motion.halving_lengths:.2f} L")
+                      + (" (without the hydrostatic moment)" if hydrostatic else ""))
+    if trajectory.beyond_range:
+        console.print("beyond the table's conditions, the loads are extrapolated: " + "; ".join(trajectory.beyond_range))
+    if args.out:
+        buffer = io.StringIO()
+        writer = csv.DictWriter(buffer, fieldnames=["t", *names])
+        writer.writeheader()
+        writer.writerows(trajectory.rows())
+        atomic_write_text(Path(args.out), buffer.getvalue())
         console.print(f"written: {args.out}")
     return 0
 
@@ -497,6 +610,17 @@ def _convergence(args: argparse.Namespace) -> int:
     return 0
 
 
+def _add_vehicle_arguments(parser: argparse.ArgumentParser) -> None:
+    """The vehicle's mass properties, where they are not the table's body trimmed neutrally buoyant."""
+    parser.add_argument("--mass-prime", type=float, help="the vehicle's mass m' = m / (0.5 rho L^3) "
+                        "(default: neutrally buoyant, the displaced water's)")
+    parser.add_argument("--xg-prime", type=float, help="its centre of gravity x_G' = x_G / L, forward of the moment "
+                        "centre (default: at the centre of buoyancy)")
+    parser.add_argument("--iz-prime", type=float, help="its moment of inertia in yaw about the moment centre, "
+                        "I'z = I_z / (0.5 rho L^5) (default: the displaced water's)")
+    parser.add_argument("--iy-prime", type=float, help="likewise in pitch, I'y (default: the displaced water's)")
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(
         prog="hydroderiv",
@@ -569,12 +693,29 @@ def build_parser() -> argparse.ArgumentParser:
     stab = steps.add_parser("stability", help="straight-line stability (controls fixed) a derivative table implies, "
                             "beside the experiment's")
     stab.add_argument("table", metavar="TABLE_JSON", help="a derivative table written by `study run` or `derivatives`")
-    stab.add_argument("--mass-prime", type=float, help="the vehicle's mass m' = m / (0.5 rho L^3) "
-                      "(default: neutrally buoyant, the displaced water's)")
-    stab.add_argument("--xg-prime", type=float, help="its centre of gravity x_G' = x_G / L, forward of the moment centre "
-                      "(default: at the centre of buoyancy)")
+    _add_vehicle_arguments(stab)
     stab.add_argument("--out", help="JSON output")
     stab.set_defaults(func=_stability)
+
+    man = steps.add_parser("manoeuvre", help="controls-fixed motion in one plane from a derivative table "
+                           "(quasi-steady loads, added mass from the shape)")
+    man.add_argument("table", metavar="TABLE_JSON", help="a derivative table written by `study run` or `derivatives`")
+    man.add_argument("--plane", choices=("horizontal", "vertical"), default="horizontal")
+    man.add_argument("--lengths", type=float, default=20.0, help="body lengths of travel to simulate (time in L/U; default 20)")
+    man.add_argument("--drift-deg", type=float, default=0.0, help="initial drift angle (horizontal; beta > 0: v < 0)")
+    man.add_argument("--pitch-deg", type=float, default=0.0, help="initial pitch incidence (vertical; alpha > 0: w < 0)")
+    man.add_argument("--yaw-rate-prime", type=float, default=0.0, help="initial r' = r L / U (horizontal)")
+    man.add_argument("--pitch-rate-prime", type=float, default=0.0, help="initial q' = q L / U (vertical)")
+    man.add_argument("--heading-deg", type=float, default=0.0, help="initial heading (horizontal) or pitch attitude "
+                     "(vertical), degrees")
+    man.add_argument("--bg-m", type=float, default=0.0, help="centre of gravity below the centre of buoyancy, m "
+                     "(vertical plane: the hydrostatic restoring moment; default 0)")
+    man.add_argument("--without-straight-offsets", action="store_true", help="drop the plane's force and moment on "
+                     "the straight course (for a body that is its own mirror image in the plane they are the mesh's "
+                     "asymmetry, which would itself start a turn)")
+    _add_vehicle_arguments(man)
+    man.add_argument("--out", help="CSV output of the motion (prime units)")
+    man.set_defaults(func=_manoeuvre)
 
     loads = steps.add_parser("loads", help="the quasi-steady loads a derivative table gives at one motion, for a "
                              "manoeuvring simulation")

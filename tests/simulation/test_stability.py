@@ -12,7 +12,15 @@ from hydroderiv.derivatives.table import derivative_table, write_table
 from hydroderiv.errors import ConfigurationError
 from hydroderiv.experiments import DERIVATIVES
 from hydroderiv.simulation import MassProperties, plane_stability, stability
-from hydroderiv.simulation.stability import PLANES, stability_report, stiffness_matrix
+from hydroderiv.geometry.surfaces import cross_section_areas
+from hydroderiv.simulation.stability import (
+    ACCELERATION,
+    PLANES,
+    mass_matrix,
+    plane_motion,
+    stability_report,
+    stiffness_matrix,
+)
 
 ROOT = Path(__file__).parent.parent.parent
 SUBOFF_MASS = MassProperties(mass_prime=0.01825, xg_prime=0.0008, source="test")
@@ -157,6 +165,7 @@ def test_the_committed_tables_of_record_carry_the_stability_of_their_own_derivat
             assert plane not in recorded
             continue
         computed = plane_stability(table, plane, mass, stderr).as_dict()
+        computed["motion"] = plane_motion(table, table["acceleration"]["values"], plane, mass).as_dict()
         for key, value in recorded[plane]["computed"].items():
             assert computed[key] == (pytest.approx(value, rel=1e-9) if isinstance(value, float) else value)
     horizontal = recorded["horizontal"]
@@ -164,6 +173,8 @@ def test_the_committed_tables_of_record_carry_the_stability_of_their_own_derivat
     assert horizontal["experiment"]["index"] == pytest.approx(measured.index, rel=1e-9)
     assert horizontal["computed"]["stable"] is measured.stable is False
     assert horizontal["computed"]["static_lever"] > horizontal["computed"]["damping_lever"] > 0
+    # the computed derivatives' shorter damping lever makes the divergence faster than the experiment's
+    assert 0 < horizontal["computed"]["motion"]["doubling_lengths"] < horizontal["experiment"]["motion"]["doubling_lengths"]
 
 
 def test_aff8_in_pitch_is_as_unstable_as_aff3_in_yaw_with_the_sail_edge_on():
@@ -174,3 +185,63 @@ def test_aff8_in_pitch_is_as_unstable_as_aff3_in_yaw_with_the_sail_edge_on():
 
     assert recorded("AFF-8")["vertical"]["computed"]["index"] == pytest.approx(
         recorded("AFF-3")["horizontal"]["computed"]["index"], rel=0.05)
+
+
+def random_acceleration(rng, plane):
+    """Acceleration derivatives of the usual signs and sizes (prime units), the coupling at random."""
+    names = ACCELERATION[plane]
+    translation, rotation = -rng.uniform(0.01, 0.03), -rng.uniform(0.0005, 0.002)
+    coupling = rng.uniform(-0.5, 0.5) * np.sqrt(translation * rotation)
+    return dict(zip(names, (translation, coupling, coupling, rotation)))
+
+
+@pytest.mark.parametrize("plane", list(PLANES))
+def test_the_roots_of_the_motion_solve_its_characteristic_equation_and_follow_the_criterion(plane):
+    """det(K - lambda M) = 0 at each root; one root is positive exactly when the criterion is negative; a
+    disturbance doubles over ln 2 / lambda body lengths."""
+    rng = np.random.default_rng(5)
+    signs = set()
+    for _ in range(200):
+        derivatives = as_plane(plane, random_plane(rng))
+        mass = MassProperties(rng.uniform(0.01, 0.03), rng.uniform(-0.02, 0.02), "random",
+                              iz_prime=rng.uniform(0.0005, 0.002), iy_prime=rng.uniform(0.0005, 0.002))
+        acceleration = random_acceleration(rng, plane)
+        motion = plane_motion(derivatives, acceleration, plane, mass)
+        stiffness, inertia = stiffness_matrix(derivatives, plane, mass), mass_matrix(acceleration, plane, mass)
+        for root in motion.roots:
+            assert abs(np.linalg.det(stiffness - root * inertia)) < 1e-9 * abs(np.linalg.det(stiffness))
+        criterion = plane_stability(derivatives, plane, mass).criterion
+        if criterion < 0:
+            assert motion.growth_rate > 0 and motion.doubling_lengths == pytest.approx(np.log(2) / motion.growth_rate)
+            assert motion.halving_lengths is None
+        signs.add(criterion < 0)
+    assert signs == {True, False}
+
+
+def test_the_mass_matrix_holds_the_body_and_its_added_mass_with_the_planes_signs():
+    """Yaw: m' - Y'v., m' x_G' - Y'r.; pitch: m' - Z'w., -(m' x_G' + Z'q.) (q > 0 nose up)."""
+    mass = MassProperties(0.018, 0.001, "test", iz_prime=0.0011, iy_prime=0.0012)
+    yaw = mass_matrix({"Yvdot": -0.017, "Nvdot": 0.0002, "Yrdot": 0.0003, "Nrdot": -0.001}, "horizontal", mass)
+    assert yaw == pytest.approx(np.array([[0.035, 0.018e-3 - 0.0003], [0.018e-3 - 0.0002, 0.0021]]))
+    pitch = mass_matrix({"Zwdot": -0.017, "Mwdot": -0.0002, "Zqdot": -0.0003, "Mqdot": -0.001}, "vertical", mass)
+    assert pitch == pytest.approx(np.array([[0.035, -(0.018e-3 - 0.0003)], [-(0.018e-3 - 0.0002), 0.0022]]))
+    with pytest.raises(ConfigurationError, match="Nrdot"):
+        mass_matrix({"Yvdot": -0.017}, "horizontal", mass)
+    with pytest.raises(ConfigurationError, match="moment of inertia I'z"):
+        mass_matrix({"Yvdot": -0.017, "Nvdot": 0.0, "Yrdot": 0.0, "Nrdot": -0.001}, "horizontal", SUBOFF_MASS)
+    with pytest.raises(ConfigurationError, match="at least m' x_G'"):
+        MassProperties(0.018, 0.3, "test", iz_prime=0.001)
+
+
+def test_neutral_buoyancy_takes_the_inertia_of_the_displaced_water(suboff):
+    """Of the axisymmetric hull, by sections: I = rho \\int (x^2 A + A^2 / (4 pi)) dx, A(x) the section area
+    (a disc's second moment about a diameter is pi R^4 / 4), against the surface's own moments."""
+    body = suboff("AFF-1")
+    mass = MassProperties.neutrally_buoyant(body)
+    lo, hi = body.surface.bounds[:, 0]
+    x = np.linspace(lo, hi, 4001)
+    area = cross_section_areas(body.surface, x)
+    by_sections = np.trapezoid(x**2 * area + area**2 / (4 * np.pi), x)
+    length = body.reference.length
+    assert mass.iz_prime == pytest.approx(2 * by_sections / length**5, rel=0.002)
+    assert mass.iy_prime == pytest.approx(mass.iz_prime, rel=1e-6)

@@ -50,6 +50,17 @@ class TriSurface:
         return (volumes[:, None] * self.triangles.sum(axis=1) / 4.0).sum(axis=0) / volumes.sum()
 
     @property
+    def second_moments(self) -> np.ndarray:
+        """The enclosed volume's second moments about the origin, S_ij = \\int x_i x_j dV (3x3): a uniform
+        solid's inertia tensor per unit density is trace(S) I - S. Summed over the tetrahedra each face spans
+        with the origin, whose S is det[a b c] / 120 (a a^T + b b^T + c c^T + (a + b + c)(a + b + c)^T)."""
+        t = self.triangles
+        det = np.einsum("ij,ij->i", t[:, 0], np.cross(t[:, 1], t[:, 2]))
+        corners = np.einsum("fki,fkj->fij", t, t)
+        summed = t.sum(axis=1)
+        return ((corners + np.einsum("fi,fj->fij", summed, summed)) * det[:, None, None]).sum(axis=0) / 120.0
+
+    @property
     def bounds(self) -> np.ndarray:
         return np.array([self.vertices.min(axis=0), self.vertices.max(axis=0)])
 
@@ -157,11 +168,23 @@ def _as_manifold(surface: TriSurface):
     )
 
 
-def cross_section_areas(surface: TriSurface, x: np.ndarray) -> np.ndarray:
-    """Areas of the sections of a closed surface by the planes x = const (exact polygon areas)."""
+def _sections(surface: TriSurface, x: np.ndarray) -> list:
+    """Manifold's sections of a closed surface by the planes x = const, in the coordinates (y, z)."""
     # Manifold slices normal to z, so turn the x axis onto z: (x, y, z) -> (y, z, x).
     solid = _as_manifold(surface).transform(np.array([[0.0, 1.0, 0, 0], [0, 0, 1.0, 0], [1.0, 0, 0, 0]]))
-    return np.array([solid.slice(float(h)).area() for h in np.atleast_1d(x)])
+    return [solid.slice(float(h)) for h in np.atleast_1d(x)]
+
+
+def cross_section_areas(surface: TriSurface, x: np.ndarray) -> np.ndarray:
+    """Areas of the sections of a closed surface by the planes x = const (exact polygon areas)."""
+    return np.array([section.area() for section in _sections(surface, x)])
+
+
+def cross_section_contours(surface: TriSurface, x: np.ndarray) -> list[list[np.ndarray]]:
+    """The closed contours of each section of a closed surface by the planes x = const: per station a list
+    of (n, 2) arrays of (y, z); an outer contour turns from +y towards +z (positive signed area in the
+    (y, z) plane), a hole the other way."""
+    return [[np.asarray(contour, dtype=float) for contour in section.to_polygons()] for section in _sections(surface, x)]
 
 
 def union_components(parts: dict[str, TriSurface]) -> tuple[TriSurface, np.ndarray]:

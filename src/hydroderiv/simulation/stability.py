@@ -33,6 +33,10 @@ forward of B; l'_r (l'_q) is the lever of the damping in yaw (pitch): the vehicl
 damping lever is the longer. G_V neglects the hydrostatic restoring moment of the metacentric height, which
 fades as 1/U^2 and is not a hydrodynamic derivative. The stability index is what the derivatives' errors
 mean for a designer: a few per cent in Y'r moves l'_r, and with it G_H, by much more when m' - Y'r is small.
+
+How fast an unstable vehicle turns away does depend on M: the roots of det(K - lambda M) = 0 (:func:`plane_motion`),
+with the acceleration derivatives estimated from the body's shape (derivatives/added_mass.py) and the
+vehicle's moments of inertia, give the distance over which a disturbance doubles.
 """
 
 from __future__ import annotations
@@ -47,32 +51,49 @@ from ..geometry import Body
 
 # plane -> (force and moment per velocity, force and moment per rate), in the order of the formulas above
 PLANES = {"horizontal": ("Yv", "Nv", "Yr", "Nr"), "vertical": ("Zw", "Mw", "Zq", "Mq")}
+# the acceleration derivatives in the same order (derivatives/added_mass.py's names)
+ACCELERATION = {"horizontal": ("Yvdot", "Nvdot", "Yrdot", "Nrdot"), "vertical": ("Zwdot", "Mwdot", "Zqdot", "Mqdot")}
 
 
 @dataclass(frozen=True)
 class MassProperties:
-    """The rigid body's mass and centre of gravity in the prime system (m' = m / (0.5 rho L^3), x_G' = x_G / L)."""
+    """The rigid body's mass, centre of gravity and (where known) moments of inertia about the moment centre
+    in the prime system: m' = m / (0.5 rho L^3), x_G' = x_G / L, I'z = I_z / (0.5 rho L^5), likewise I'y.
+    The stability criteria need only the mass and x_G'; how fast a disturbance grows needs the inertia too."""
 
     mass_prime: float
     xg_prime: float
     source: str
+    iz_prime: float | None = None
+    iy_prime: float | None = None
 
     def __post_init__(self):
         if not np.isfinite(self.mass_prime) or self.mass_prime <= 0:
             raise ConfigurationError(f"the vehicle's mass m' must be positive, not {self.mass_prime}")
         if not np.isfinite(self.xg_prime):
             raise ConfigurationError(f"the centre of gravity x_G' must be finite, not {self.xg_prime}")
+        for name, inertia in (("I'z", self.iz_prime), ("I'y", self.iy_prime)):
+            # about the moment centre, no inertia is below the mass's own m x_G^2
+            if inertia is not None and not (np.isfinite(inertia) and inertia >= self.mass_prime * self.xg_prime**2):
+                raise ConfigurationError(f"the moment of inertia {name} = {inertia} is impossible for m' = "
+                                         f"{self.mass_prime} at x_G' = {self.xg_prime}: it must be at least m' x_G'^2")
 
     @classmethod
     def neutrally_buoyant(cls, body: Body) -> MassProperties:
         """A vehicle trimmed to neutral buoyancy: its mass is the displaced water's, rho times the hull's
         volume, and its centre of gravity lies at the centre of buoyancy (the volume's centroid), as a
-        submerged vehicle on a level course needs. So m' = 2 V / L^3."""
+        submerged vehicle on a level course needs. So m' = 2 V / L^3. The moments of inertia are those of
+        the displaced water as a rigid solid (the mass spread like the volume), a first estimate that a
+        designer replaces with the vehicle's own."""
         length = body.reference.length
+        moments = body.surface.second_moments  # \int x_i x_j dV about the moment centre
         return cls(mass_prime=2.0 * body.reference.volume / length**3,
                    xg_prime=float(body.surface.centroid[0]) / length,
                    source=f"neutrally buoyant {body.name}: mass of the displaced water "
-                          f"({body.reference.volume:.5f} m^3), centre of gravity at the centre of buoyancy")
+                          f"({body.reference.volume:.5f} m^3), centre of gravity at the centre of buoyancy, "
+                          f"inertia of the displaced water",
+                   iz_prime=float(2.0 * (moments[0, 0] + moments[1, 1]) / length**5),
+                   iy_prime=float(2.0 * (moments[0, 0] + moments[2, 2]) / length**5))
 
 
 @dataclass(frozen=True)
@@ -104,10 +125,59 @@ def stiffness_matrix(derivatives: Mapping[str, float], plane: str, mass: MassPro
     return np.array([[force_velocity, force_rate + sign * m], [moment_velocity, moment_rate - m * xg]])
 
 
-def _names(plane: str) -> tuple[str, ...]:
+def mass_matrix(acceleration: Mapping[str, float], plane: str, mass: MassProperties) -> np.ndarray:
+    """M of M x. = K x in ``plane``: the body's mass and inertia with the added mass of the acceleration
+    derivatives (keys as derivatives/added_mass.py names them)."""
+    missing = [k for k in ACCELERATION[_check_plane(plane)] if k not in acceleration]
+    if missing:
+        raise ConfigurationError(f"the {plane} plane's motion needs the acceleration derivatives {', '.join(missing)}")
+    force_velocity, moment_velocity, force_rate, moment_rate = (float(acceleration[k]) for k in ACCELERATION[plane])
+    inertia, symbol = (mass.iz_prime, "I'z") if plane == "horizontal" else (mass.iy_prime, "I'y")
+    if inertia is None:
+        raise ConfigurationError(f"the {plane} plane's motion needs the vehicle's moment of inertia {symbol}")
+    m, xg = mass.mass_prime, mass.xg_prime
+    if plane == "horizontal":
+        return np.array([[m - force_velocity, m * xg - force_rate], [m * xg - moment_velocity, inertia - moment_rate]])
+    return np.array([[m - force_velocity, -(m * xg + force_rate)], [-(m * xg + moment_velocity), inertia - moment_rate]])
+
+
+@dataclass(frozen=True)
+class PlaneMotion:
+    """How a small disturbance of straight motion evolves in one plane, controls fixed: the roots of
+    det(K - lambda M) = 0, in units of U / L (time measured in body lengths travelled). A positive root grows
+    as exp(lambda' s / L) over the distance s: it doubles every ln 2 / lambda' body lengths."""
+
+    plane: str
+    roots: tuple[complex, complex]
+    growth_rate: float  # the largest real part, per body length travelled
+    doubling_lengths: float | None  # body lengths for a disturbance to double (None when it decays)
+    halving_lengths: float | None  # body lengths for the slowest decaying one to halve (None when one grows)
+
+    def as_dict(self) -> dict:
+        return {"plane": self.plane, "roots": [[float(r.real), float(r.imag)] for r in self.roots],
+                "growth_rate": self.growth_rate, "doubling_lengths": self.doubling_lengths,
+                "halving_lengths": self.halving_lengths}
+
+
+def plane_motion(derivatives: Mapping[str, float], acceleration: Mapping[str, float], plane: str,
+                 mass: MassProperties) -> PlaneMotion:
+    """The roots of the linearised motion in ``plane`` (see :class:`PlaneMotion`)."""
+    stiffness = stiffness_matrix({k: float(derivatives[k]) for k in _names(plane)}, plane, mass)
+    roots = np.linalg.eigvals(np.linalg.solve(mass_matrix(acceleration, plane, mass), stiffness))
+    roots = tuple(sorted((complex(r) for r in roots), key=lambda r: (r.real, r.imag), reverse=True))
+    growth = float(roots[0].real)
+    return PlaneMotion(plane, roots, growth, float(np.log(2.0) / growth) if growth > 0 else None,
+                       float(np.log(2.0) / -growth) if growth < 0 else None)
+
+
+def _check_plane(plane: str) -> str:
     if plane not in PLANES:
         raise ConfigurationError(f"unknown plane {plane!r}; choose one of {', '.join(PLANES)}")
-    return PLANES[plane]
+    return plane
+
+
+def _names(plane: str) -> tuple[str, ...]:
+    return PLANES[_check_plane(plane)]
 
 
 def _criterion_index_levers(derivatives: Mapping[str, float], plane: str, mass: MassProperties):
@@ -153,11 +223,24 @@ def stability(derivatives: Mapping[str, float], mass: MassProperties,
 
 
 def stability_report(values: Mapping[str, float], stderr: Mapping[str, float], mass: MassProperties,
-                     reference: Mapping[str, float] | None = None) -> dict:
+                     reference: Mapping[str, float] | None = None,
+                     acceleration: Mapping[str, float] | None = None) -> dict:
     """What a derivative table records: the mass properties, and per plane the computed stability beside
-    the experiment's, from its own derivatives with the same mass (None where they were not all measured)."""
+    the experiment's, from its own derivatives with the same mass (None where they were not all measured).
+    With the acceleration derivatives (and the mass's inertia), each also carries the roots of the motion
+    (``motion``, see :class:`PlaneMotion`), the experiment's with the same added mass."""
     computed = stability(values, mass, stderr)
     measured = stability(reference or {}, mass)
+    with_motion = acceleration is not None and (mass.iz_prime is not None or mass.iy_prime is not None)
+
+    def entry(result: PlaneStability, derivatives: Mapping[str, float]) -> dict:
+        plane = result.plane
+        inertia = mass.iz_prime if plane == "horizontal" else mass.iy_prime
+        if not with_motion or inertia is None or not all(k in acceleration for k in ACCELERATION[plane]):
+            return result.as_dict()
+        return {**result.as_dict(), "motion": plane_motion(derivatives, acceleration, plane, mass).as_dict()}
+
     return {"mass": asdict(mass),
-            **{plane: {"computed": s.as_dict(), "experiment": measured[plane].as_dict() if plane in measured else None}
+            **{plane: {"computed": entry(s, values),
+                       "experiment": entry(measured[plane], reference) if plane in measured else None}
                for plane, s in computed.items()}}
