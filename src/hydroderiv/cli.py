@@ -323,9 +323,9 @@ def _print_acceleration(body):
 
     estimate = acceleration_derivatives(body)
     f = estimate.factors
-    table = Table(title="acceleration derivatives (added mass), estimated from the shape: strip theory with the "
-                        f"equivalent spheroid's 3-D factors (translation {f['translation']:.3f}, coupling "
-                        f"{f['coupling']:.3f}, rotation {f['rotation']:.3f}); not measured by the captive conditions")
+    table = Table(title="added mass from the shape (prime units): strip theory times the equivalent spheroid's "
+                        f"3-D factors {f['translation']:.3f} / {f['coupling']:.3f} / {f['rotation']:.3f} "
+                        "(translation / coupling / rotation)")
     for column in ("term", "value", "strip theory"):
         table.add_column(column, justify="right")
     for name, value in estimate.values.items():
