@@ -232,3 +232,9 @@ def test_manoeuvre_of_a_committed_table_writes_the_motion_and_flags_its_range(tm
     assert "--bg-m acts in pitch" in capsys.readouterr().out
     assert main(["manoeuvre", table, "--lengths", "-1"]) == 2
     assert "positive number of body lengths" in capsys.readouterr().out
+    aff3 = table.replace("AFF-8", "AFF-3")
+    assert main(["manoeuvre", aff3, "--plane", "vertical"]) == 2
+    assert "do not cover the vertical plane" in capsys.readouterr().out.replace("\n", " ")
+    # a given inertia in one plane only: the other plane's motion is left out, not an error
+    assert main(["stability", aff3, "--mass-prime", "0.02", "--xg-prime", "0", "--iz-prime", "0.0012"]) == 0
+    assert "doubles in" in capsys.readouterr().out

@@ -391,7 +391,8 @@ def _stability_report(values: dict, stderr: dict, mass, body_key: str | None, ac
     planes = [p for p in report if p != "mass"]
     if not planes:
         return None
-    inertia = "" if mass.iz_prime is None else f", I'z = {mass.iz_prime:.6f}, I'y = {mass.iy_prime:.6f}"
+    inertia = "".join(f", {symbol} = {value:.6f}" for symbol, value in (("I'z", mass.iz_prime), ("I'y", mass.iy_prime))
+                      if value is not None)
     table = Table(title=f"straight-line stability, controls fixed (m' = {mass.mass_prime:.5f}, x_G' = {mass.xg_prime:+.5f}"
                         f"{inertia}: {mass.source}; stable if C > 0; G = 1 - static lever / damping lever; "
                         "a disturbance doubles (or halves) over the given body lengths)")
@@ -428,21 +429,27 @@ def _table_vehicle(path: Path, table: dict, args: argparse.Namespace):
     from .simulation.stability import MassProperties
 
     body_key = table.get("meta", {}).get("body")
-    body = None
-    if body_key is not None:
-        body = suboff_body(body_key) if body_key.upper() in CONFIGURATIONS else Body.read(body_key)
     given = {"mass_prime": args.mass_prime, "xg_prime": args.xg_prime, "iz_prime": args.iz_prime,
              "iy_prime": args.iy_prime}
     given = {k: v for k, v in given.items() if v is not None}
+    mass_given = "mass_prime" in given and "xg_prime" in given
+    recorded = (table.get("acceleration") or {}).get("values")
+    body = None
+    if body_key is not None and not (mass_given and recorded):
+        try:
+            body = suboff_body(body_key) if body_key.upper() in CONFIGURATIONS else Body.read(body_key)
+        except HydroderivError:
+            if not mass_given:
+                raise
+            # the mass is given: without the body only the added mass (and so the motion's roots) is missing
     if body is None:
-        if "mass_prime" not in given or "xg_prime" not in given:
+        if not mass_given:
             raise HydroderivError(f"{path}: the table names no body (meta.body); give --mass-prime and --xg-prime")
         mass = MassProperties(source="given on the command line", **given)
     else:
         mass = MassProperties.neutrally_buoyant(body)
         if given:
             mass = replace(mass, **given, source=f"{mass.source}, with the given {', '.join(given)}")
-    recorded = (table.get("acceleration") or {}).get("values")
     acceleration = recorded if recorded else (acceleration_derivatives(body).values if body is not None else None)
     return body_key, mass, acceleration
 
@@ -483,7 +490,7 @@ def _manoeuvre(args: argparse.Namespace) -> int:
 
     path = Path(args.table)
     table = _read_table(path)
-    body_key, mass, acceleration = _table_vehicle(path, table, args)
+    _, mass, acceleration = _table_vehicle(path, table, args)
     if acceleration is None:
         raise HydroderivError(f"{path}: no acceleration derivatives: the table names no body to estimate them from")
     meta = table.get("meta", {})
@@ -491,15 +498,12 @@ def _manoeuvre(args: argparse.Namespace) -> int:
     if args.bg_m:
         if horizontal:
             raise HydroderivError("--bg-m acts in pitch: use it with --plane vertical")
-        if body_key is None or not isinstance(meta.get("speed_m_s"), (int, float)):
-            raise HydroderivError(f"{path}: --bg-m needs the table's body and speed (meta.body, meta.speed_m_s)")
+        if not isinstance(meta.get("speed_m_s"), (int, float)):
+            raise HydroderivError(f"{path}: --bg-m needs the table's speed (meta.speed_m_s)")
     angle = math.radians(args.drift_deg if horizontal else args.pitch_deg)
     rate = args.yaw_rate_prime if horizontal else args.pitch_rate_prime
-    hydrostatic = 0.0
-    if args.bg_m:
-        body = suboff_body(body_key) if body_key.upper() in CONFIGURATIONS else Body.read(body_key)
-        length = body.reference.length
-        hydrostatic = 2.0 * GRAVITY * body.reference.volume * args.bg_m / (meta["speed_m_s"] ** 2 * length**3)
+    # the weight of a neutrally buoyant vehicle, m g, acting z_BG below the buoyancy: m' g z_BG / U^2 in prime units
+    hydrostatic = mass.mass_prime * GRAVITY * args.bg_m / meta["speed_m_s"] ** 2 if args.bg_m else 0.0
     simulation = ManoeuvreSimulation(QuasiSteadyLoads(table), acceleration, mass, args.plane, table_reach(table),
                                      hydrostatic, straight_offsets=not args.without_straight_offsets)
     # drift beta > 0 and pitch alpha > 0 are v < 0 and w < 0 (the study files' convention)

@@ -114,6 +114,9 @@ def test_impossible_simulations_are_named():
     no_drag = {k: v for k, v in STABLE.items() if k != "extended"}
     with pytest.raises(ConfigurationError, match="drag"):
         ManoeuvreSimulation(QuasiSteadyLoads(no_drag), ACCELERATION, MASS)
+    yaw_only = linear_table(Yv=-0.03, Nv=-0.004, Yr=0.006, Nr=-0.005)
+    with pytest.raises(ConfigurationError, match="no Zw, Mw, Zq, Mq"):
+        ManoeuvreSimulation(QuasiSteadyLoads(yaw_only), ACCELERATION, MASS, "vertical")
     simulation = ManoeuvreSimulation(loads, ACCELERATION, MASS)
     for bad in ({"lengths": 0}, {"lengths": 5, "surge": -1.0}, {"lengths": 5, "rate": np.nan}):
         with pytest.raises(ConfigurationError):

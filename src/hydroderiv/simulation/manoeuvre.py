@@ -40,7 +40,7 @@ from scipy.integrate import solve_ivp
 
 from ..errors import ConfigurationError
 from .quasi_steady import QuasiSteadyLoads
-from .stability import MassProperties, mass_matrix
+from .stability import PLANES, MassProperties, mass_matrix
 
 GRAVITY = 9.80665  # m/s^2
 # plane -> (sway or heave velocity, rate, force, moment, angle): the table's and the quasi-steady model's names
@@ -71,8 +71,8 @@ class ManoeuvreSimulation:
     ``loads`` is the table's :class:`QuasiSteadyLoads`; ``acceleration`` the acceleration derivatives in prime
     units (derivatives/added_mass.py); ``mass`` the vehicle's (with its moment of inertia for the plane);
     ``reach`` the largest |v'|, |w'|, |r'|, |q'| the table's conditions hold (the motion is flagged beyond
-    it); ``hydrostatic_moment_prime`` is rho g V z_BG / (0.5 rho U^2 L^3), zero for a vehicle whose centre of
-    gravity lies at its centre of buoyancy. ``straight_offsets=False`` drops the plane's force and moment on
+    it); ``hydrostatic_moment_prime`` is rho g V z_BG / (0.5 rho U^2 L^3) (m' g z_BG / U^2 when neutrally
+    buoyant), zero for a vehicle whose centre of gravity lies at its centre of buoyancy. ``straight_offsets=False`` drops the plane's force and moment on
     the straight course (Y', N' or Z', M' at rest in the plane): for a body that is its own mirror image in
     the plane they are the mesh's asymmetry, a numerical error that would itself start a turn."""
 
@@ -83,6 +83,10 @@ class ManoeuvreSimulation:
             raise ConfigurationError(f"unknown plane {plane!r}; choose one of {', '.join(_PLANE)}")
         if "Xudot" not in acceleration:
             raise ConfigurationError("the simulation needs the surge acceleration derivative Xudot")
+        missing = [name for name in PLANES[plane] if name not in loads.terms]
+        if missing:
+            raise ConfigurationError(f"the table has no {', '.join(missing)}: its conditions do not cover the {plane} "
+                                     "plane, so it cannot move the vehicle there")
         self.plane = plane
         self.loads = loads
         self.reach = dict(reach or {})

@@ -231,12 +231,11 @@ def stability_report(values: Mapping[str, float], stderr: Mapping[str, float], m
     (``motion``, see :class:`PlaneMotion`), the experiment's with the same added mass."""
     computed = stability(values, mass, stderr)
     measured = stability(reference or {}, mass)
-    with_motion = acceleration is not None and (mass.iz_prime is not None or mass.iy_prime is not None)
 
     def entry(result: PlaneStability, derivatives: Mapping[str, float]) -> dict:
         plane = result.plane
         inertia = mass.iz_prime if plane == "horizontal" else mass.iy_prime
-        if not with_motion or inertia is None or not all(k in acceleration for k in ACCELERATION[plane]):
+        if acceleration is None or inertia is None or not all(k in acceleration for k in ACCELERATION[plane]):
             return result.as_dict()
         return {**result.as_dict(), "motion": plane_motion(derivatives, acceleration, plane, mass).as_dict()}
 
