@@ -226,6 +226,7 @@ def test_manoeuvre_of_a_committed_table_writes_the_motion_and_flags_its_range(tm
     printed = capsys.readouterr().out.replace("\n", " ")
     assert "doubles in" in printed and "beyond the table's conditions" in printed
     starboard, port = tracks
+    assert (tmp_path / "track0.01.png").stat().st_size > 10_000  # the figure beside the CSV
     assert len(starboard) == 101 and float(starboard[-1]["t"]) == pytest.approx(10.0)
     assert float(starboard[-1]["y"]) > 0.5 and float(port[-1]["y"]) == pytest.approx(-float(starboard[-1]["y"]), rel=1e-6)
     assert main(["manoeuvre", table, "--bg-m", "0.02"]) == 2

@@ -484,6 +484,7 @@ def _manoeuvre(args: argparse.Namespace) -> int:
     import csv
     import io
 
+    from .report.manoeuvre import plot_trajectory
     from .simulation.manoeuvre import GRAVITY, ManoeuvreSimulation, table_reach
     from .simulation.quasi_steady import QuasiSteadyLoads
     from .simulation.stability import PLANES, plane_motion
@@ -538,7 +539,9 @@ def _manoeuvre(args: argparse.Namespace) -> int:
         writer.writeheader()
         writer.writerows(trajectory.rows())
         atomic_write_text(Path(args.out), buffer.getvalue())
-        console.print(f"written: {args.out}")
+        plot = plot_trajectory(trajectory, Path(args.out).with_suffix(".png"),
+                               f"controls-fixed motion, {args.plane} plane, from {path.name}")
+        console.print(f"written: {args.out}, {plot}")
     return 0
 
 
@@ -718,7 +721,7 @@ def build_parser() -> argparse.ArgumentParser:
                      "the straight course (for a body that is its own mirror image in the plane they are the mesh's "
                      "asymmetry, which would itself start a turn)")
     _add_vehicle_arguments(man)
-    man.add_argument("--out", help="CSV output of the motion (prime units)")
+    man.add_argument("--out", help="CSV output of the motion (prime units), with a PNG of it beside")
     man.set_defaults(func=_manoeuvre)
 
     loads = steps.add_parser("loads", help="the quasi-steady loads a derivative table gives at one motion, for a "
