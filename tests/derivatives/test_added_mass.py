@@ -45,11 +45,13 @@ def test_a_section_moved_or_turned_keeps_or_swaps_its_added_mass():
 def test_a_circle_with_two_thin_fins_has_brysons_added_mass():
     """A circle of radius R with fins to the tip radius s, moving across them: rho pi (s^2 - R^2 + R^4/s^2)
     (Bryson 1954, zero thickness); along them, the circle's own pi R^2. Fins 1.5 mm thick out of 0.5 m: the
-    panel method must resolve a gap 300 times thinner than the section, as SUBOFF's fins need."""
+    panel method must resolve a gap 300 times thinner than the section, as SUBOFF's fins need. Their
+    thickness adds a little across them (within 1.5 %), never takes away."""
     radius, tip, thickness = 0.25, 0.5, 0.0015
     section = manifold3d.CrossSection.circle(radius, 256) + manifold3d.CrossSection.square([thickness, 2 * tip], center=True)
     matrix = section_added_mass([np.asarray(c) for c in section.to_polygons()])
-    assert matrix[0, 0] == pytest.approx(np.pi * (tip**2 - radius**2 + radius**4 / tip**2), rel=0.01)
+    across = matrix[0, 0] / (np.pi * (tip**2 - radius**2 + radius**4 / tip**2))
+    assert 1.0 < across < 1.015
     assert matrix[1, 1] == pytest.approx(np.pi * radius**2, rel=0.01)
 
 

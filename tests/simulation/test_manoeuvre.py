@@ -118,6 +118,7 @@ def test_impossible_simulations_are_named():
     with pytest.raises(ConfigurationError, match="no Zw, Mw, Zq, Mq"):
         ManoeuvreSimulation(QuasiSteadyLoads(yaw_only), ACCELERATION, MASS, "vertical")
     simulation = ManoeuvreSimulation(loads, ACCELERATION, MASS)
-    for bad in ({"lengths": 0}, {"lengths": 5, "surge": -1.0}, {"lengths": 5, "rate": np.nan}):
-        with pytest.raises(ConfigurationError):
+    for bad, message in (({"lengths": 0}, "positive number"), ({"lengths": 5, "surge": -1.0}, "moving ahead"),
+                         ({"lengths": 5, "rate": np.nan}, "finite"), ({"lengths": 5, "surge": 1e-8}, "come to rest")):
+        with pytest.raises(ConfigurationError, match=message):
             simulation.run(**bad)

@@ -72,9 +72,10 @@ class ManoeuvreSimulation:
     units (derivatives/added_mass.py); ``mass`` the vehicle's (with its moment of inertia for the plane);
     ``reach`` the largest |v'|, |w'|, |r'|, |q'| the table's conditions hold (the motion is flagged beyond
     it); ``hydrostatic_moment_prime`` is rho g V z_BG / (0.5 rho U^2 L^3) (m' g z_BG / U^2 when neutrally
-    buoyant), zero for a vehicle whose centre of gravity lies at its centre of buoyancy. ``straight_offsets=False`` drops the plane's force and moment on
-    the straight course (Y', N' or Z', M' at rest in the plane): for a body that is its own mirror image in
-    the plane they are the mesh's asymmetry, a numerical error that would itself start a turn."""
+    buoyant), zero for a vehicle whose centre of gravity lies at its centre of buoyancy.
+    ``straight_offsets=False`` drops the plane's force and moment on the straight course (Y', N' or Z', M' at
+    rest in the plane): for a body that is its own mirror image in the plane they are the mesh's asymmetry,
+    a numerical error that would itself start a turn."""
 
     def __init__(self, loads: QuasiSteadyLoads, acceleration: Mapping[str, float], mass: MassProperties,
                  plane: str = "horizontal", reach: Mapping[str, float] | None = None,
@@ -104,10 +105,13 @@ class ManoeuvreSimulation:
         self._offsets = {force: 0.0, moment: 0.0} if straight_offsets else {force: straight[force], moment: straight[moment]}
 
     def derivatives_of_state(self, t: float, state: np.ndarray) -> np.ndarray:
-        """d/dt' of (u', s', w', x', n', angle): s the sway (heave) velocity, w the yaw (pitch) rate, n the
-        lateral (vertical) position."""
+        """d/dt' of (u', s', omega', x', n', angle): s the sway (heave) velocity, omega the yaw (pitch) rate,
+        n the lateral (vertical) position."""
         u, s, rate, _, _, angle = state
         speed = float(np.hypot(u, s))
+        if speed < 1e-6:
+            # the quasi-steady loads are defined per unit of speed: a vehicle at rest has no prime velocities
+            raise ConfigurationError(f"the vehicle has come to rest at t' = {t:.3g}: the quasi-steady loads are undefined")
         lateral, rate_name, force, moment, _ = _PLANE[self.plane]
         c = self.loads.coefficients(**{lateral: s / speed, rate_name: rate / speed, "u": u / speed})
         c = {k: value - self._offsets.get(k, 0.0) for k, value in c.items()}
