@@ -21,8 +21,7 @@ ACCELERATION = {"Xudot": -0.00055, "Yvdot": -0.0194, "Yrdot": -0.00014, "Nvdot":
 
 def linear_table(**values):
     """A derivative table with linear terms only, the straight run's drag and nothing else."""
-    return {"details": {k: {"value": v, "nonlinear": 0.0, "nonlinear_term": "none", "offset": 0.0}
-                        for k, v in values.items()},
+    return {"details": {k: {"value": v, "nonlinear": 0.0, "nonlinear_term": "none"} for k, v in values.items()},
             "extended": {"details": {"Xuu": {"value": -0.0013}}}, **values}
 
 

@@ -70,7 +70,8 @@ class QuasiSteadyLoads:
             if straight is not None:
                 value = float(straight[coefficient])
             else:
-                offsets = [details[n]["offset"] for n, _ in _ODD.get(coefficient, ()) if n in details]
+                # a fit without an offset (or a table written by hand) holds none: it passes through zero
+                offsets = [details[n].get("offset") or 0.0 for n, _ in _ODD.get(coefficient, ()) if n in details]
                 value = float(np.mean(offsets)) if offsets else (float("nan") if coefficient == "X" else 0.0)
             self.terms[name] = (value, 0.0, "none")
 
