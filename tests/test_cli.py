@@ -180,7 +180,7 @@ def test_stability_names_what_a_table_lacks(tmp_path, capsys):
     assert main(["stability", str(bad).replace("turns", "absent")]) == 2
     assert "no such derivative table" in capsys.readouterr().out
     anonymous = tmp_path / "anonymous.json"
-    anonymous.write_text(json.dumps({"Yv": -0.02, "meta": {}}))
+    anonymous.write_text(json.dumps({"Yv": -0.02, "Nv": -0.01, "Yr": 0.005, "Nr": -0.004, "meta": {}}))
     assert main(["stability", str(anonymous)]) == 2
     assert "names no body" in capsys.readouterr().out
 

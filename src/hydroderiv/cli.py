@@ -466,12 +466,12 @@ def _stability(args: argparse.Namespace) -> int:
     values = {k: table[k] for k in names if isinstance(table.get(k), (int, float))}
     stderr = {k: details[k]["stderr"] for k in values if isinstance(details.get(k), dict)
               and isinstance(details[k].get("stderr"), (int, float))}
-    body_key, mass, acceleration = _table_vehicle(path, table, args)
-    report = _stability_report(values, stderr, mass, body_key, acceleration)
-    if report is None:
+    if not any(all(k in values for k in keys) for keys in PLANES.values()):  # before the body is built
         needs = "; ".join(f"{plane}: {', '.join(keys)}" for plane, keys in PLANES.items())
         raise HydroderivError(f"{path}: no plane has all four derivatives ({needs}); the table has "
                               f"{', '.join(values) or 'none of them'}")
+    body_key, mass, acceleration = _table_vehicle(path, table, args)
+    report = _stability_report(values, stderr, mass, body_key, acceleration)
     if args.out:
         atomic_write_text(Path(args.out), json.dumps({"table": str(path), **report}, indent=2) + "\n")
         console.print(f"written: {args.out}")
