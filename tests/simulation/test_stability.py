@@ -11,8 +11,8 @@ from hydroderiv.case import Condition
 from hydroderiv.derivatives.table import derivative_table, write_table
 from hydroderiv.errors import ConfigurationError
 from hydroderiv.experiments import DERIVATIVES
-from hydroderiv.simulation import MassProperties, plane_stability, stability
 from hydroderiv.geometry.surfaces import cross_section_areas
+from hydroderiv.simulation import MassProperties, plane_stability, stability
 from hydroderiv.simulation.stability import (
     ACCELERATION,
     PLANES,
