@@ -172,6 +172,32 @@ def test_stability_of_a_committed_table_for_its_own_body_or_a_given_mass(tmp_pat
     assert json.loads(out.read_text())["horizontal"]["computed"]["criterion"] == pytest.approx(criterion, rel=1e-12)
 
 
+def test_stability_with_a_hydrostatic_moment_gives_the_speeds_it_holds_the_vertical_plane(tmp_path, capsys):
+    """`stability --bg-m` adds the restoring moment in pitch at the table's speed: AFF-8's vertical plane
+    gets three roots and the range of stable speeds, which grows as sqrt(z_BG); the horizontal plane is as
+    without it; a table without a vertical plane, or a centre of gravity above the buoyancy, is named."""
+    from pathlib import Path
+
+    root = Path(__file__).parents[1]
+    table = str(root / "validation/derivatives-AFF-8-medium.json")
+    reports = []
+    for bg in ("0.02", "0.08"):
+        out = tmp_path / f"stability{bg}.json"
+        assert main(["stability", table, "--bg-m", bg, "--out", str(out)]) == 0
+        reports.append(json.loads(out.read_text()))
+    assert "the vertical plane is stable up to" in capsys.readouterr().out.replace("\n", " ")
+    near, far = (r["vertical"]["computed"] for r in reports)
+    assert len(near["motion"]["roots"]) == 3
+    assert far["stable_speeds"]["highest_m_s"] == pytest.approx(2 * near["stable_speeds"]["highest_m_s"])
+    recorded = json.loads(Path(table).read_text())["stability"]
+    assert reports[0]["horizontal"]["computed"]["motion"]["growth_rate"] == pytest.approx(
+        recorded["horizontal"]["computed"]["motion"]["growth_rate"], rel=1e-6)
+    assert main(["stability", table.replace("AFF-8", "AFF-3"), "--bg-m", "0.02"]) == 2
+    assert "--bg-m acts in pitch" in capsys.readouterr().out
+    assert main(["stability", table, "--bg-m", "-0.02"]) == 2
+    assert "capsizes" in capsys.readouterr().out
+
+
 def test_stability_names_what_a_table_lacks(tmp_path, capsys):
     bad = tmp_path / "turns.json"
     bad.write_text(json.dumps({"Yr": 0.003, "Nr": -0.003, "meta": {"body": "AFF-8"}}))
@@ -231,6 +257,9 @@ def test_manoeuvre_of_a_committed_table_writes_the_motion_and_flags_its_range(tm
     assert float(starboard[-1]["y"]) > 0.5 and float(port[-1]["y"]) == pytest.approx(-float(starboard[-1]["y"]), rel=1e-6)
     assert main(["manoeuvre", table, "--bg-m", "0.02"]) == 2
     assert "--bg-m acts in pitch" in capsys.readouterr().out
+    assert main(["manoeuvre", table, "--plane", "vertical", "--bg-m", "0.02", "--pitch-rate-prime", "0.001",
+                 "--lengths", "2"]) == 0
+    assert "with the hydrostatic moment h' = 3.2" in capsys.readouterr().out.replace("\n", " ")
     assert main(["manoeuvre", table, "--lengths", "-1"]) == 2
     assert "positive number of body lengths" in capsys.readouterr().out
     aff3 = table.replace("AFF-8", "AFF-3")

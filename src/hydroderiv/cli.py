@@ -380,14 +380,17 @@ def _print_stability(study, rows, body, acceleration) -> dict | None:
                              MassProperties.neutrally_buoyant(body), study.body, acceleration.values)
 
 
-def _stability_report(values: dict, stderr: dict, mass, body_key: str | None, acceleration: dict) -> dict | None:
+def _stability_report(values: dict, stderr: dict, mass, body_key: str | None, acceleration: dict,
+                      bg_m: float = 0.0, speed_m_s: float | None = None) -> dict | None:
     """Print the stability of every plane ``values`` completes, beside the experiment's for ``body_key``
-    (a SUBOFF configuration) with the same mass, and return the report; None if no plane is complete."""
+    (a SUBOFF configuration) with the same mass, and return the report; None if no plane is complete. With
+    ``bg_m``, the vertical plane's roots hold the hydrostatic moment at ``speed_m_s``, and the speeds at
+    which it is stable are printed."""
     from .experiments import DERIVATIVES
-    from .simulation.stability import stability_report
+    from .simulation.stability import StableSpeeds, stability_report
 
     reference = DERIVATIVES.get(body_key or "", {}).get("values")
-    report = stability_report(values, stderr, mass, reference, acceleration)
+    report = stability_report(values, stderr, mass, reference, acceleration, bg_m, speed_m_s)
     planes = [p for p in report if p != "mass"]
     if not planes:
         return None
@@ -395,7 +398,9 @@ def _stability_report(values: dict, stderr: dict, mass, body_key: str | None, ac
                       if value is not None)
     table = Table(title=f"straight-line stability, controls fixed (m' = {mass.mass_prime:.5f}, x_G' = {mass.xg_prime:+.5f}"
                         f"{inertia}: {mass.source}; stable if C > 0; G = 1 - static lever / damping lever; "
-                        "a disturbance doubles (or halves) over the given body lengths)")
+                        "a disturbance doubles (or halves) over the given body lengths"
+                        + (f"; the vertical plane's with the hydrostatic moment of z_BG = {bg_m:g} m at "
+                           f"{speed_m_s:.3f} m/s" if bg_m else "") + ")")
     for column in ("plane", "C", "G", "std. error", "static lever", "damping lever", "stable", "doubles / halves in (L)",
                    "experiment G", "exp. static lever", "exp. damping lever", "exp. doubles / halves in (L)"):
         table.add_column(column, justify="right")
@@ -416,6 +421,10 @@ def _stability_report(values: dict, stderr: dict, mass, body_key: str | None, ac
                       *(("-",) * 3 if e is None else (f"{e['index']:+.3f}", f"{e['static_lever']:+.3f}",
                                                       f"{e['damping_lever']:+.3f}")), lengths(e))
     console.print(table)
+    for who in ("computed", "experiment"):
+        speeds = (report.get("vertical", {}).get(who) or {}).get("stable_speeds")
+        if speeds is not None:
+            console.print(f"{who}: {StableSpeeds(**speeds).describe()} (the table's speed: {speed_m_s:.3f} m/s)")
     return report
 
 
@@ -454,6 +463,20 @@ def _table_vehicle(path: Path, table: dict, args: argparse.Namespace):
     return body_key, mass, acceleration
 
 
+def _hydrostatics_speed(path: Path, table: dict, args: argparse.Namespace, has_vertical: bool) -> float | None:
+    """The table's speed, which the hydrostatic moment of --bg-m needs (it fades as 1/U^2); None without
+    --bg-m. Named errors where --bg-m has no vertical plane to act in or no speed to scale with."""
+    if not args.bg_m:
+        return None
+    if not has_vertical:
+        raise HydroderivError("--bg-m acts in pitch: it needs the vertical plane (`manoeuvre --plane vertical`, or a "
+                              "table with Z'w, M'w, Z'q, M'q)")
+    speed = table.get("meta", {}).get("speed_m_s")
+    if not isinstance(speed, (int, float)):
+        raise HydroderivError(f"{path}: --bg-m needs the table's speed (meta.speed_m_s)")
+    return float(speed)
+
+
 def _stability(args: argparse.Namespace) -> int:
     """The straight-line stability of a committed derivative table, for the table's body trimmed neutrally
     buoyant or for the mass, centre of gravity and inertia a designer gives."""
@@ -471,7 +494,10 @@ def _stability(args: argparse.Namespace) -> int:
         raise HydroderivError(f"{path}: no plane has all four derivatives ({needs}); the table has "
                               f"{', '.join(values) or 'none of them'}")
     body_key, mass, acceleration = _table_vehicle(path, table, args)
-    report = _stability_report(values, stderr, mass, body_key, acceleration)
+    speed = _hydrostatics_speed(path, table, args, has_vertical=all(k in values for k in PLANES["vertical"]))
+    if args.bg_m and (acceleration is None or mass.iy_prime is None):
+        raise HydroderivError("--bg-m needs the vertical plane's motion: the acceleration derivatives and I'y")
+    report = _stability_report(values, stderr, mass, body_key, acceleration, args.bg_m, speed)
     if args.out:
         atomic_write_text(Path(args.out), json.dumps({"table": str(path), **report}, indent=2) + "\n")
         console.print(f"written: {args.out}")
@@ -485,26 +511,20 @@ def _manoeuvre(args: argparse.Namespace) -> int:
     import io
 
     from .report.manoeuvre import plot_trajectory
-    from .simulation.manoeuvre import GRAVITY, ManoeuvreSimulation, table_reach
+    from .simulation.manoeuvre import ManoeuvreSimulation, table_reach
     from .simulation.quasi_steady import QuasiSteadyLoads
-    from .simulation.stability import PLANES, plane_motion
+    from .simulation.stability import PLANES, hydrostatic_moment_prime, plane_motion
 
     path = Path(args.table)
     table = _read_table(path)
     _, mass, acceleration = _table_vehicle(path, table, args)
     if acceleration is None:
         raise HydroderivError(f"{path}: no acceleration derivatives: the table names no body to estimate them from")
-    meta = table.get("meta", {})
     horizontal = args.plane == "horizontal"
-    if args.bg_m:
-        if horizontal:
-            raise HydroderivError("--bg-m acts in pitch: use it with --plane vertical")
-        if not isinstance(meta.get("speed_m_s"), (int, float)):
-            raise HydroderivError(f"{path}: --bg-m needs the table's speed (meta.speed_m_s)")
+    speed = _hydrostatics_speed(path, table, args, has_vertical=not horizontal)
     angle = math.radians(args.drift_deg if horizontal else args.pitch_deg)
     rate = args.yaw_rate_prime if horizontal else args.pitch_rate_prime
-    # the weight of a neutrally buoyant vehicle, m g, acting z_BG below the buoyancy: m' g z_BG / U^2 in prime units
-    hydrostatic = mass.mass_prime * GRAVITY * args.bg_m / meta["speed_m_s"] ** 2 if args.bg_m else 0.0
+    hydrostatic = hydrostatic_moment_prime(mass, args.bg_m, speed) if args.bg_m else 0.0
     simulation = ManoeuvreSimulation(QuasiSteadyLoads(table), acceleration, mass, args.plane, table_reach(table),
                                      hydrostatic, straight_offsets=not args.without_straight_offsets)
     # drift beta > 0 and pitch alpha > 0 are v < 0 and w < 0 (the study files' convention)
@@ -525,12 +545,12 @@ def _manoeuvre(args: argparse.Namespace) -> int:
                           f"{math.degrees(state[angle_name]):+.2f}", f"{state['x']:.3f}", f"{state[names[4]]:+.3f}")
     console.print(out_table)
     if all(isinstance(table.get(k), (int, float)) for k in PLANES[args.plane]):
-        motion = plane_motion(table, acceleration, args.plane, mass)
+        motion = plane_motion(table, acceleration, args.plane, mass, hydrostatic)
         roots = ", ".join(f"{r.real:+.4f}" + (f" {r.imag:+.4f}i" if r.imag else "") for r in motion.roots)
         console.print(f"linearised: roots {roots} per L travelled; "
                       + (f"a disturbance doubles in {motion.doubling_lengths:.2f} L" if motion.doubling_lengths
                          else f"the slowest disturbance halves in {motion.halving_lengths:.2f} L")
-                      + (" (without the hydrostatic moment)" if hydrostatic else ""))
+                      + (f" (with the hydrostatic moment h' = {hydrostatic:.3e})" if hydrostatic else ""))
     if trajectory.beyond_range:
         console.print("beyond the table's conditions, the loads are extrapolated: " + "; ".join(trajectory.beyond_range))
     if args.out:
@@ -626,6 +646,8 @@ def _add_vehicle_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--iz-prime", type=float, help="its moment of inertia in yaw about the moment centre, "
                         "I'z = I_z / (0.5 rho L^5) (default: the displaced water's)")
     parser.add_argument("--iy-prime", type=float, help="likewise in pitch, I'y (default: the displaced water's)")
+    parser.add_argument("--bg-m", type=float, default=0.0, help="its centre of gravity below its centre of buoyancy, "
+                        "m: the hydrostatic restoring moment in pitch at the table's speed (default 0, none)")
 
 
 def build_parser() -> argparse.ArgumentParser:
@@ -715,8 +737,6 @@ def build_parser() -> argparse.ArgumentParser:
     man.add_argument("--pitch-rate-prime", type=float, default=0.0, help="initial q' = q L / U (vertical)")
     man.add_argument("--heading-deg", type=float, default=0.0, help="initial heading (horizontal) or pitch attitude "
                      "(vertical), degrees")
-    man.add_argument("--bg-m", type=float, default=0.0, help="centre of gravity below the centre of buoyancy, m "
-                     "(vertical plane: the hydrostatic restoring moment; default 0)")
     man.add_argument("--without-straight-offsets", action="store_true", help="drop the plane's force and moment on "
                      "the straight course (for a body that is its own mirror image in the plane they are the mesh's "
                      "asymmetry, which would itself start a turn)")

@@ -11,7 +11,7 @@ import pytest
 from hydroderiv.errors import ConfigurationError
 from hydroderiv.simulation.manoeuvre import ManoeuvreSimulation, table_reach
 from hydroderiv.simulation.quasi_steady import QuasiSteadyLoads
-from hydroderiv.simulation.stability import MassProperties, plane_motion
+from hydroderiv.simulation.stability import MassProperties, mass_matrix, plane_motion, stiffness_matrix
 
 VALIDATION = Path(__file__).parents[2] / "validation"
 MASS = MassProperties(0.01825, 0.0008, "test", iz_prime=0.00107, iy_prime=0.00107)
@@ -98,6 +98,30 @@ def test_a_hydrostatic_moment_rights_a_pitch_disturbance():
 
     assert attitude(0.0) == pytest.approx(0.01, rel=1e-6)  # no restoring moment: it keeps its attitude
     assert attitude(0.002) < 0.002
+
+
+@pytest.mark.parametrize("moment", [0.0003, 0.01])
+def test_with_a_hydrostatic_moment_a_small_pitch_disturbance_follows_the_linearised_cubic(moment):
+    """AFF-8's table of record (offsets dropped) with the restoring moment h': the nonlinear equations from a
+    small pitch rate follow exp(A t) of the linearised (w', q', theta) system, built here from the stiffness
+    and mass matrices, to 0.1 % of the motion's size; its largest root is the stability analysis's. With
+    h' = 0.0003 one root grows, with 0.01 (below the critical speed) the attitude oscillates and decays."""
+    from scipy.linalg import expm
+
+    table = aff8_medium()
+    simulation = ManoeuvreSimulation(QuasiSteadyLoads(table), ACCELERATION, MASS, "vertical",
+                                     hydrostatic_moment_prime=moment, straight_offsets=False)
+    trajectory = simulation.run(8, rate=1e-7)
+    stiffness = np.block([[stiffness_matrix(table, "vertical", MASS), np.array([[0.0], [-moment]])],
+                          [np.array([[0.0, 1.0, 0.0]])]])
+    inertia = np.block([[mass_matrix(ACCELERATION, "vertical", MASS), np.zeros((2, 1))], [np.array([[0.0, 0.0, 1.0]])]])
+    system = np.linalg.solve(inertia, stiffness)
+    linear = np.array([expm(system * t) @ np.array([0.0, 1e-7, 0.0]) for t in trajectory.time])
+    for k, name in enumerate(("w", "q", "theta")):
+        assert trajectory.states[name] == pytest.approx(linear[:, k], abs=1e-3 * np.max(np.abs(linear[:, k])))
+    motion = plane_motion(table, ACCELERATION, "vertical", MASS, moment)
+    assert motion.growth_rate == pytest.approx(max(np.linalg.eigvals(system).real), rel=1e-9)
+    assert (motion.growth_rate > 0) == (moment < 0.005)
 
 
 def test_impossible_simulations_are_named():

@@ -40,9 +40,8 @@ from scipy.integrate import solve_ivp
 
 from ..errors import ConfigurationError
 from .quasi_steady import QuasiSteadyLoads
-from .stability import PLANES, MassProperties, mass_matrix
+from .stability import GRAVITY, PLANES, MassProperties, mass_matrix
 
-GRAVITY = 9.80665  # m/s^2
 # plane -> (sway or heave velocity, rate, force, moment, angle): the table's and the quasi-steady model's names
 _PLANE = {"horizontal": ("v", "r", "Y", "N", "psi"), "vertical": ("w", "q", "Z", "M", "theta")}
 

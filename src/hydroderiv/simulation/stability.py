@@ -30,13 +30,27 @@ Hydrodynamics*, 2nd ed., 2018):
 and the vertical-plane C_V, G_V with Z'w, M'w, Z'q + m', M'q - m' x_G' and the levers
 l'_w = -M'w / Z'w, l'_q = -(M'q - m' x_G') / (Z'q + m'). l'_v (l'_w) is where the sway (heave) force acts,
 forward of B; l'_r (l'_q) is the lever of the damping in yaw (pitch): the vehicle is stable when the
-damping lever is the longer. G_V neglects the hydrostatic restoring moment of the metacentric height, which
-fades as 1/U^2 and is not a hydrodynamic derivative. The stability index is what the derivatives' errors
-mean for a designer: a few per cent in Y'r moves l'_r, and with it G_H, by much more when m' - Y'r is small.
+damping lever is the longer. C_V and G_V leave out the hydrostatic restoring moment of the metacentric
+height, which fades as 1/U^2 and is not a hydrodynamic derivative (it enters the roots below). The
+stability index is what the derivatives' errors mean for a designer: a few per cent in Y'r moves l'_r, and
+with it G_H, by much more when m' - Y'r is small.
 
 How fast an unstable vehicle turns away does depend on M: the roots of det(K - lambda M) = 0 (:func:`plane_motion`),
 with the acceleration derivatives estimated from the body's shape (derivatives/added_mass.py) and the
 vehicle's moments of inertia, give the distance over which a disturbance doubles.
+
+In the vertical plane a vehicle whose centre of gravity lies z_BG below its centre of buoyancy also feels the
+hydrostatic moment -rho g V z_BG sin(theta), h' theta in prime units with h' = m' g z_BG / U^2 (neutrally
+buoyant: buoyancy and weight m g). The pitch attitude theta (theta. = q) joins the state, and the
+characteristic equation of (w', q', theta) becomes the cubic
+
+    lambda det(lambda M - K) + h' ((m' - Z'w.) lambda - Z'w) = 0,
+
+whose coefficients are linear in h'. By Routh and Hurwitz its roots all lie in the left half-plane exactly
+when the four coefficients are positive and a2 a1 > a3 a0 (a_k the coefficient of lambda^k): each condition
+is a half-line in h', so the vehicle is stable over one interval of h', that is one range of speeds
+(:func:`vertical_stable_speeds`). The restoring moment fades as 1/U^2: a vehicle unstable in pitch on its
+hydrodynamics alone (C_V < 0) is held by it up to a critical speed and no further.
 """
 
 from __future__ import annotations
@@ -46,9 +60,11 @@ from typing import Mapping
 
 import numpy as np
 
+from ..case import KNOT
 from ..errors import ConfigurationError
 from ..geometry import Body
 
+GRAVITY = 9.80665  # m/s^2
 # plane -> (force and moment per velocity, force and moment per rate), in the order of the formulas above
 PLANES = {"horizontal": ("Yv", "Nv", "Yr", "Nr"), "vertical": ("Zw", "Mw", "Zq", "Mq")}
 # the acceleration derivatives in the same order (derivatives/added_mass.py's names)
@@ -144,30 +160,137 @@ def mass_matrix(acceleration: Mapping[str, float], plane: str, mass: MassPropert
 @dataclass(frozen=True)
 class PlaneMotion:
     """How a small disturbance of straight motion evolves in one plane, controls fixed: the roots of
-    det(K - lambda M) = 0, in units of U / L (time measured in body lengths travelled). A positive root grows
-    as exp(lambda' s / L) over the distance s: it doubles every ln 2 / lambda' body lengths."""
+    det(K - lambda M) = 0 (three with a hydrostatic moment in pitch, the attitude joining the state), in units
+    of U / L (time measured in body lengths travelled). A positive root grows as exp(lambda' s / L) over the
+    distance s: it doubles every ln 2 / lambda' body lengths."""
 
     plane: str
-    roots: tuple[complex, complex]
+    roots: tuple[complex, ...]
     growth_rate: float  # the largest real part, per body length travelled
     doubling_lengths: float | None  # body lengths for a disturbance to double (None when it decays)
     halving_lengths: float | None  # body lengths for the slowest decaying one to halve (None when one grows)
+    hydrostatic_moment_prime: float = 0.0  # h' = m' g z_BG / U^2 (vertical plane), 0 without
 
     def as_dict(self) -> dict:
-        return {"plane": self.plane, "roots": [[float(r.real), float(r.imag)] for r in self.roots],
-                "growth_rate": self.growth_rate, "doubling_lengths": self.doubling_lengths,
-                "halving_lengths": self.halving_lengths}
+        record = {"plane": self.plane, "roots": [[float(r.real), float(r.imag)] for r in self.roots],
+                  "growth_rate": self.growth_rate, "doubling_lengths": self.doubling_lengths,
+                  "halving_lengths": self.halving_lengths}
+        # recorded only where there is one, so that tables written without it read the same
+        if self.hydrostatic_moment_prime:
+            record["hydrostatic_moment_prime"] = self.hydrostatic_moment_prime
+        return record
+
+
+def hydrostatic_moment_prime(mass: MassProperties, bg_m: float, speed_m_s: float) -> float:
+    """h' = rho g V z_BG / (0.5 rho U^2 L^3) = m' g z_BG / U^2 for a neutrally buoyant vehicle whose centre of
+    gravity lies ``bg_m`` below its centre of buoyancy, at the speed ``speed_m_s``."""
+    if not (np.isfinite(bg_m) and bg_m >= 0):
+        raise ConfigurationError(f"the centre of gravity must lie at or below the centre of buoyancy: z_BG = {bg_m} m "
+                                 "(a vehicle with it above capsizes; there is no straight motion to disturb)")
+    if not (np.isfinite(speed_m_s) and speed_m_s > 0):
+        raise ConfigurationError(f"the speed must be positive, not {speed_m_s} m/s")
+    return mass.mass_prime * GRAVITY * bg_m / speed_m_s**2
+
+
+def _state_matrices(derivatives: Mapping[str, float], acceleration: Mapping[str, float], plane: str,
+                    mass: MassProperties, hydrostatic: float) -> tuple[np.ndarray, np.ndarray]:
+    """(K, M) of M x. = K x: x = (v', r'), (w', q') or, with a hydrostatic moment h', (w', q', theta)."""
+    stiffness = stiffness_matrix({k: float(derivatives[k]) for k in _names(plane)}, plane, mass)
+    inertia = mass_matrix(acceleration, plane, mass)
+    if not hydrostatic:
+        return stiffness, inertia
+    if plane != "vertical":
+        raise ConfigurationError("a hydrostatic moment acts in pitch: give it for the vertical plane only")
+    # theta. = q'; the moment equation gains -h' theta
+    return (np.block([[stiffness, np.array([[0.0], [-hydrostatic]])], [np.array([[0.0, 1.0, 0.0]])]]),
+            np.block([[inertia, np.zeros((2, 1))], [np.array([[0.0, 0.0, 1.0]])]]))
 
 
 def plane_motion(derivatives: Mapping[str, float], acceleration: Mapping[str, float], plane: str,
-                 mass: MassProperties) -> PlaneMotion:
-    """The roots of the linearised motion in ``plane`` (see :class:`PlaneMotion`)."""
-    stiffness = stiffness_matrix({k: float(derivatives[k]) for k in _names(plane)}, plane, mass)
-    roots = np.linalg.eigvals(np.linalg.solve(mass_matrix(acceleration, plane, mass), stiffness))
+                 mass: MassProperties, hydrostatic_moment_prime: float = 0.0) -> PlaneMotion:
+    """The roots of the linearised motion in ``plane`` (see :class:`PlaneMotion`), with the hydrostatic moment
+    h' (:func:`hydrostatic_moment_prime`) in the vertical plane. Without it the pitch attitude is neutral (a
+    zero root, left out): the vehicle keeps whatever attitude a disturbance leaves."""
+    if not (np.isfinite(hydrostatic_moment_prime) and hydrostatic_moment_prime >= 0):
+        raise ConfigurationError(f"the hydrostatic moment h' must be zero or positive, not {hydrostatic_moment_prime}")
+    stiffness, inertia = _state_matrices(derivatives, acceleration, plane, mass, hydrostatic_moment_prime)
+    roots = np.linalg.eigvals(np.linalg.solve(inertia, stiffness))
     roots = tuple(sorted((complex(r) for r in roots), key=lambda r: (r.real, r.imag), reverse=True))
     growth = float(roots[0].real)
     return PlaneMotion(plane, roots, growth, float(np.log(2.0) / growth) if growth > 0 else None,
-                       float(np.log(2.0) / -growth) if growth < 0 else None)
+                       float(np.log(2.0) / -growth) if growth < 0 else None, float(hydrostatic_moment_prime))
+
+
+def vertical_characteristic_coefficients(derivatives: Mapping[str, float], acceleration: Mapping[str, float],
+                                         mass: MassProperties) -> tuple[tuple[float, float], ...]:
+    """The cubic det(lambda M - K) of the vertical plane with the attitude in the state, as (a3, a2, a1, a0),
+    each a pair (value without the hydrostatic moment, change per unit h'): a_k = c_k + s_k h'. See the
+    module docstring."""
+    stiffness = stiffness_matrix({k: float(derivatives[k]) for k in _names("vertical")}, "vertical", mass)
+    inertia = mass_matrix(acceleration, "vertical", mass)
+    (m11, m12), (m21, m22) = inertia
+    (k11, k12), (k21, k22) = stiffness
+    # det(lambda M - K) = det M lambda^2 - (m11 k22 + m22 k11 - m12 k21 - m21 k12) lambda + det K, times lambda,
+    # plus h' (m11 lambda - k11)
+    return ((float(np.linalg.det(inertia)), 0.0), (float(-(m11 * k22 + m22 * k11 - m12 * k21 - m21 * k12)), 0.0),
+            (float(np.linalg.det(stiffness)), float(m11)), (0.0, float(-k11)))
+
+
+@dataclass(frozen=True)
+class StableSpeeds:
+    """The speeds at which a vehicle with its centre of gravity ``bg_m`` below its centre of buoyancy is stable
+    in the vertical plane, controls fixed: from ``lowest_m_s`` to ``highest_m_s`` (None: at any speed above
+    the lowest). ``stable_anywhere`` is False when no speed is stable. The same range in the hydrostatic
+    moment h' = m' g z_BG / U^2, which does not depend on z_BG, is ``hydrostatic_moment_range`` (None
+    without a stable speed; an upper end of None is unbounded)."""
+
+    bg_m: float
+    stable_anywhere: bool
+    lowest_m_s: float | None
+    highest_m_s: float | None
+    hydrostatic_moment_range: tuple[float, float | None] | None = None
+
+    def as_dict(self) -> dict:
+        return asdict(self)
+
+    def describe(self) -> str:
+        if not self.stable_anywhere:
+            return f"with z_BG = {self.bg_m:g} m the vertical plane is unstable at every speed"
+        if self.highest_m_s is None:
+            return (f"with z_BG = {self.bg_m:g} m the vertical plane is stable at every speed" if not self.lowest_m_s
+                    else f"with z_BG = {self.bg_m:g} m the vertical plane is stable above {self.lowest_m_s:.3f} m/s")
+        low = f"from {self.lowest_m_s:.3f} m/s " if self.lowest_m_s else ""
+        return (f"with z_BG = {self.bg_m:g} m the vertical plane is stable {low}up to {self.highest_m_s:.3f} m/s "
+                f"({self.highest_m_s / KNOT:.2f} kn; h' = m' g z_BG / U^2 above "
+                f"{self.hydrostatic_moment_range[0]:.3e}), unstable above")
+
+
+
+def vertical_stable_speeds(derivatives: Mapping[str, float], acceleration: Mapping[str, float],
+                           mass: MassProperties, bg_m: float) -> StableSpeeds:
+    """The range of speeds at which the vertical plane is stable with the hydrostatic moment of z_BG =
+    ``bg_m`` (the Hurwitz conditions on the cubic, each linear in h' = m' g z_BG / U^2; see the module
+    docstring). The derivatives are taken as independent of speed (the Reynolds number's effect neglected)."""
+    if not (np.isfinite(bg_m) and bg_m > 0):
+        raise ConfigurationError(f"a range of stable speeds needs the centre of gravity below the centre of buoyancy "
+                                 f"(z_BG > 0), not z_BG = {bg_m} m")
+    a3, a2, a1, a0 = vertical_characteristic_coefficients(derivatives, acceleration, mass)
+    # a3 > 0 (M is positive definite) and a2 do not depend on h'; the rest, and a2 a1 - a3 a0, are c + s h'
+    hurwitz = (a2, a1, a0, (a2[0] * a1[0] - a3[0] * a0[0], a2[0] * a1[1] - a3[0] * a0[1]))
+    lowest_h, highest_h = 0.0, np.inf
+    for constant, slope in hurwitz:
+        if slope > 0:
+            lowest_h = max(lowest_h, -constant / slope)
+        elif slope < 0:
+            highest_h = min(highest_h, -constant / slope)
+        elif constant <= 0:
+            highest_h = -np.inf  # fails at every h'
+    weight = mass.mass_prime * GRAVITY * bg_m  # h' U^2
+    if not highest_h > lowest_h or a3[0] <= 0:
+        return StableSpeeds(float(bg_m), False, None, None)
+    return StableSpeeds(float(bg_m), True, float(np.sqrt(weight / highest_h)) if np.isfinite(highest_h) else 0.0,
+                        float(np.sqrt(weight / lowest_h)) if lowest_h > 0 else None,
+                        (float(lowest_h), float(highest_h) if np.isfinite(highest_h) else None))
 
 
 def _check_plane(plane: str) -> str:
@@ -224,20 +347,30 @@ def stability(derivatives: Mapping[str, float], mass: MassProperties,
 
 def stability_report(values: Mapping[str, float], stderr: Mapping[str, float], mass: MassProperties,
                      reference: Mapping[str, float] | None = None,
-                     acceleration: Mapping[str, float] | None = None) -> dict:
+                     acceleration: Mapping[str, float] | None = None,
+                     bg_m: float = 0.0, speed_m_s: float | None = None) -> dict:
     """What a derivative table records: the mass properties, and per plane the computed stability beside
     the experiment's, from its own derivatives with the same mass (None where they were not all measured).
     With the acceleration derivatives (and the mass's inertia), each also carries the roots of the motion
-    (``motion``, see :class:`PlaneMotion`), the experiment's with the same added mass."""
+    (``motion``, see :class:`PlaneMotion`), the experiment's with the same added mass. With the centre of
+    gravity ``bg_m`` below the centre of buoyancy, the vertical plane's roots hold the hydrostatic moment at
+    ``speed_m_s`` and ``stable_speeds`` gives the speeds at which it is stable (:class:`StableSpeeds`)."""
     computed = stability(values, mass, stderr)
     measured = stability(reference or {}, mass)
+    if bg_m and speed_m_s is None:
+        raise ConfigurationError("the hydrostatic moment needs the speed: it fades as 1/U^2")
+    hydrostatic = hydrostatic_moment_prime(mass, bg_m, speed_m_s) if bg_m else 0.0
 
     def entry(result: PlaneStability, derivatives: Mapping[str, float]) -> dict:
         plane = result.plane
         inertia = mass.iz_prime if plane == "horizontal" else mass.iy_prime
         if acceleration is None or inertia is None or not all(k in acceleration for k in ACCELERATION[plane]):
             return result.as_dict()
-        return {**result.as_dict(), "motion": plane_motion(derivatives, acceleration, plane, mass).as_dict()}
+        if plane == "horizontal" or not bg_m:
+            return {**result.as_dict(), "motion": plane_motion(derivatives, acceleration, plane, mass).as_dict()}
+        motion = plane_motion(derivatives, acceleration, plane, mass, hydrostatic)
+        return {**result.as_dict(), "motion": motion.as_dict(),
+                "stable_speeds": vertical_stable_speeds(derivatives, acceleration, mass, bg_m).as_dict()}
 
     return {"mass": asdict(mass),
             **{plane: {"computed": entry(s, values),
