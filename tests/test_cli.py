@@ -7,6 +7,13 @@ import pytest
 from hydroderiv.cli import main
 
 
+def json_output(tmp_path, name, *args):
+    """Run the command ``args`` with ``--out`` a new JSON file and return what it wrote."""
+    out = tmp_path / f"{name}.json"
+    assert main([*args, "--out", str(out)]) == 0
+    return json.loads(out.read_text())
+
+
 def test_geometry_writes_named_solids_and_prints_reference_quantities(tmp_path, capsys):
     assert main(["geometry", "--config", "AFF-8", "--out", str(tmp_path), "--resolution", "0.04"]) == 0
     out = capsys.readouterr().out
@@ -180,11 +187,7 @@ def test_stability_with_a_hydrostatic_moment_gives_the_speeds_it_holds_the_verti
 
     root = Path(__file__).parents[1]
     table = str(root / "validation/derivatives-AFF-8-medium.json")
-    reports = []
-    for bg in ("0.02", "0.08"):
-        out = tmp_path / f"stability{bg}.json"
-        assert main(["stability", table, "--bg-m", bg, "--out", str(out)]) == 0
-        reports.append(json.loads(out.read_text()))
+    reports = [json_output(tmp_path, f"stability{bg}", "stability", table, "--bg-m", bg) for bg in ("0.02", "0.08")]
     assert "the vertical plane is stable up to" in capsys.readouterr().out.replace("\n", " ")
     near, far = (r["vertical"]["computed"] for r in reports)
     assert len(near["motion"]["roots"]) == 3
@@ -218,11 +221,7 @@ def test_loads_of_a_committed_table_at_a_motion_and_beyond_its_range(tmp_path, c
 
     root = Path(__file__).parents[1]
     table = str(root / "validation/derivatives-AFF-8-medium.json")
-    outs = []
-    for drift in ("4", "-4"):
-        out = tmp_path / f"loads{drift}.json"
-        assert main(["loads", table, "--drift-deg", drift, "--out", str(out)]) == 0
-        outs.append(json.loads(out.read_text()))
+    outs = [json_output(tmp_path, f"loads{drift}", "loads", table, "--drift-deg", drift) for drift in ("4", "-4")]
     plus, minus = (o["coefficients"] for o in outs)
     offsets = json.loads(Path(table).read_text())["extended"]["values"]
     for k in "YNK":

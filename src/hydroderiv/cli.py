@@ -567,7 +567,7 @@ def _manoeuvre(args: argparse.Namespace) -> int:
 
 def _loads(args: argparse.Namespace) -> int:
     """The quasi-steady loads a derivative table gives at one motion (simulation/quasi_steady.py), in the
-    study files' terms: drift and pitch angles, r' and q'."""
+    study files' terms: drift and pitch angles, r', q' and p'."""
     from .case import Condition
     from .derivatives.table import motion_variable
     from .simulation.quasi_steady import QuasiSteadyLoads
@@ -575,7 +575,7 @@ def _loads(args: argparse.Namespace) -> int:
     path = Path(args.table)
     table = _read_table(path)
     motion = {"drift_deg": args.drift_deg, "pitch_deg": args.pitch_deg, "yaw_rate_prime": args.yaw_rate_prime,
-              "pitch_rate_prime": args.pitch_rate_prime}
+              "pitch_rate_prime": args.pitch_rate_prime, "roll_rate_prime": args.roll_rate_prime}
     condition = Condition(1.0, **motion)
     loads = QuasiSteadyLoads(table).at(condition)
     v, u = motion_variable(condition, "drift_deg")
@@ -586,7 +586,7 @@ def _loads(args: argparse.Namespace) -> int:
     beyond = [f"{key} {value:g} (the table's conditions reach {reach[key]:g})"
               for key, value in motion.items() if reach and abs(value) > reach[key] + 1e-9]
     table_out = Table(title=f"quasi-steady loads from {path} (prime units): u' {u:.5f}, v' {v:+.5f}, w' {w:+.5f}, "
-                            f"r' {args.yaw_rate_prime:+g}, q' {args.pitch_rate_prime:+g}")
+                            f"r' {args.yaw_rate_prime:+g}, q' {args.pitch_rate_prime:+g}, p' {args.roll_rate_prime:+g}")
     for column in ("X'", "Y'", "Z'", "K'", "M'", "N'"):
         table_out.add_column(column, justify="right")
     table_out.add_row(*(f"{loads[k]:+.6f}" for k in "XYZKMN"))
@@ -751,6 +751,7 @@ def build_parser() -> argparse.ArgumentParser:
     loads.add_argument("--pitch-deg", type=float, default=0.0, help="pitch angle alpha in degrees (alpha > 0: w < 0)")
     loads.add_argument("--yaw-rate-prime", type=float, default=0.0, help="r' = r L / U (r > 0 turns to starboard)")
     loads.add_argument("--pitch-rate-prime", type=float, default=0.0, help="q' = q L / U (q > 0 nose up)")
+    loads.add_argument("--roll-rate-prime", type=float, default=0.0, help="p' = p L / U (p > 0 starboard side down)")
     loads.add_argument("--out", help="JSON output")
     loads.set_defaults(func=_loads)
 

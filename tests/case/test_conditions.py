@@ -35,6 +35,7 @@ def test_drift_and_pitch_follow_the_seed_paper_definitions():
         (dict(pitch_deg=2), ("Z", "M")),
         (dict(pitch_rate_prime=-0.2), ("Z", "M")),
         (dict(yaw_rate_prime=0.2, pitch_deg=4), ("Y", "N", "Z", "M")),
+        (dict(roll_rate_prime=0.5), ("K",)),
     ],
 )
 def test_a_condition_names_the_loads_its_derivatives_come_from(kw, loads):
@@ -48,7 +49,9 @@ def test_starboard_turn_centre_lies_to_starboard_at_radius_L_over_r():
     np.testing.assert_allclose(port.turn_centre(L), [0, -L / 0.3, 0], rtol=1e-12)
 
 
-@pytest.mark.parametrize("kw", [dict(yaw_rate_prime=0.3), dict(pitch_rate_prime=-0.2), dict(yaw_rate_prime=0.2, drift_deg=6, pitch_deg=4)])
+@pytest.mark.parametrize("kw", [dict(yaw_rate_prime=0.3), dict(pitch_rate_prime=-0.2),
+                                dict(yaw_rate_prime=0.2, drift_deg=6, pitch_deg=4),
+                                dict(roll_rate_prime=0.5, drift_deg=4, pitch_deg=-3)])
 def test_source_equals_minus_omega_cross_omega_cross_R0(kw):
     """Delta/rho = -Omega x (Omega x R0) with R0 = B - A (the seed paper's Eq. 8), B at the origin."""
     c = Condition(speed=3.0, **kw)
@@ -66,6 +69,7 @@ def test_source_equals_minus_omega_cross_omega_cross_R0(kw):
         (dict(speed=3.0, drift_deg=45), "drift angle 45"),
         (dict(speed=3.0, pitch_deg=float("nan")), "pitch angle"),
         (dict(speed=3.0, yaw_rate_prime=2.0), "impossible"),
+        (dict(speed=3.0, roll_rate_prime=-3.0), "roll rate p' = -3.0 is outside"),
     ],
 )
 def test_impossible_conditions_are_named(kw, words):
@@ -76,3 +80,14 @@ def test_impossible_conditions_are_named(kw, words):
 def test_names_are_distinct_and_file_safe():
     names = {Condition(3.0, b, 0, r).name for b in (-4, 0, 4) for r in (-0.2, 0, 0.2)}
     assert len(names) == 9 and all("/" not in n and " " not in n for n in names)
+
+
+def test_a_roll_spins_about_the_axis_through_b_and_needs_no_source_straight_ahead():
+    """p > 0 rolls the starboard side down: Omega along +x, p' = p L / U. With the inflow along the axis,
+    Omega x U_inf vanishes, so a pure roll's sphere carries no source; its axis passes through B."""
+    roll = Condition(speed=3.0, roll_rate_prime=0.5)
+    np.testing.assert_allclose(roll.angular_velocity(L), [0.5 * 3.0 / L, 0, 0])
+    assert not roll.momentum_source(L).any() and roll.is_turning
+    np.testing.assert_allclose(roll.turn_centre(L), 0.0, atol=1e-15)
+    assert roll.name == "U3_b0_a0_r0_q0_p+0.5"  # the suffix only for a roll: older names stay as they were
+    assert Condition(speed=3.0, yaw_rate_prime=0.1).name == "U3_b0_a0_r+0.1_q0"

@@ -33,6 +33,8 @@ def test_a_straight_run_is_the_same_translation_in_both_methods():
 def test_classic_refuses_a_helix_and_unknown_methods():
     with pytest.raises(ConfigurationError, match="along the rotation axis"):
         frame_setup(Condition(speed=3.0, yaw_rate_prime=0.2, pitch_deg=5), L, "classic")
+    with pytest.raises(ConfigurationError, match="along the rotation axis"):  # a roll is a helix too
+        frame_setup(Condition(speed=3.0, roll_rate_prime=0.5), L, "classic")
     with pytest.raises(ConfigurationError, match="unknown frame method 'spinning'"):
         frame_setup(Condition(speed=3.0), L, "spinning")
     with pytest.raises(ConfigurationError, match="unknown frame method"):

@@ -194,3 +194,52 @@ def test_y_and_n_interactions_need_both_relative_signs_of_drift_and_turn():
     assert {"Xvr", "Zvr", "Mvr"} <= set(terms)
     assert not {"Y|v|r", "Yv|r|", "K|v|r", "Kv|r|", "N|v|r", "Nv|r|"} & set(terms)
     assert terms["Zvr"].value == pytest.approx(0.03, rel=1e-8)
+
+
+def test_a_roll_sweep_gives_the_roll_damping_and_the_side_force_and_yaw_moment_of_a_roll():
+    """K'p, Y'p and N'p are the roll sweep's slopes, fitted as the main table's (with x|x| beside them); the
+    drift-turn interaction ignores a roll condition, which has neither drift nor yaw rate, instead of
+    taking it for the straight run."""
+    results = [record(Condition(3.344, roll_rate_prime=p), X=-0.0013, K=-0.0004 * p - 0.0002 * p * abs(p),
+                      Y=0.0003 * p, N=-0.0001 * p) for p in (-1.0, -0.5, 0.0, 0.5, 1.0)]
+    terms = {t.name: t for t in extended_terms(results)}
+    for name, value in (("Kp", -0.0004), ("Yp", 0.0003), ("Np", -0.0001)):
+        assert terms[name].value == pytest.approx(value, rel=1e-8) and terms[name].kind == "odd"
+    assert terms["Kp"].nonlinear == pytest.approx(-0.0002, rel=1e-8)
+    combined = gertler_hagen_results() + [
+        record(Condition(3.344, drift_deg=4, yaw_rate_prime=0.1), X=1.0, Y=1.0, N=1.0, K=1.0, Z=1.0, M=1.0),
+        record(Condition(3.344, drift_deg=-4, yaw_rate_prime=0.1), X=1.0, Y=1.0, N=1.0, K=1.0, Z=1.0, M=1.0)]
+    with_roll = combined + [record(Condition(3.344, roll_rate_prime=0.5), X=5.0, Y=5.0, Z=5.0, K=5.0, M=5.0, N=5.0)]
+    before = {t.name: t.value for t in extended_terms(combined) if t.kind == "interaction"}
+    after = {t.name: t.value for t in extended_terms(with_roll) if t.kind == "interaction"}
+    assert before and after == pytest.approx(before)
+
+
+def test_a_roll_is_damped_mostly_by_the_sail_with_its_load_inside_its_span(suboff):
+    """AFF-8 rolling (the main job's mesh and set-up, p' = +-0.5 and +-1). The body's roll moment is odd in p'
+    (the mirror pairs to 5 %) and damps the roll (K'p < 0). A fin's incidence in a roll grows with its
+    distance from the axis, so the sail, the farthest, carries most of K'p (over 80 %), and its
+    roll-induced side force acts inside its span (-K'/Y' of its share between its root and tip heights);
+    so does the bottom rudder's, clear of the sail's wake. The stern planes, mirror images, roll the body
+    as each other's mirror: K' of one at p' as minus the other's at -p', to the straight run's own K'
+    (the mesh's asymmetry, 6e-7: the planes' shares are small, 1e-6 to 2e-6 at p' = 1)."""
+    table = json.loads((VALIDATION / "derivatives-AFF-8-coarse-sa-roll.json").read_text())
+    rolls = {r["condition"]["roll_rate_prime"]: r for r in table["conditions"]
+             if r["condition"].get("roll_rate_prime") or not any(r["condition"][k] for k in
+                                                                ("drift_deg", "pitch_deg", "yaw_rate_prime"))}
+    moment = {p: r["coefficients"]["K"] for p, r in rolls.items()}
+    for p in (0.5, 1.0):
+        assert moment[p] - moment[0.0] == pytest.approx(-(moment[-p] - moment[0.0]), rel=0.05)
+        starboard, port = (rolls[p]["components"][part]["K"] for part in ("appendage_starboard", "appendage_port"))
+        mirrored = -rolls[-p]["components"]["appendage_port"]["K"], -rolls[-p]["components"]["appendage_starboard"]["K"]
+        assert (starboard, port) == pytest.approx(mirrored, abs=abs(moment[0.0]))
+    definitions = {"Kp": ROLL_DEFINITIONS["Kp"], "Yp": ROLL_DEFINITIONS["Yp"]}
+    shares = derivatives_by_part(fit_parts(table["conditions"], "none", True, None, definitions))
+    total = sum(shares["Kp"].values())
+    assert total < 0 and shares["Kp"]["sail"] < 0.8 * total  # both negative: the sail's is over 80 % of it
+    body = suboff("AFF-8")
+    for part in ("sail", "appendage_bottom"):
+        assert shares["Kp"][part] < 0
+        height = -shares["Kp"][part] / shares["Yp"][part]  # K = -z Y
+        z = body.component(part).vertices[..., 2] / body.reference.length
+        assert z.min() <= height <= z.max(), (part, height, z.min(), z.max())

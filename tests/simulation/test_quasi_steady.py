@@ -29,6 +29,12 @@ def test_an_exact_table_gives_its_gertler_hagen_loads():
     assert loads["K"] == pytest.approx(-0.0005 * -0.07 + 0.001 * -0.07 * 0.07, rel=1e-12)
     assert loads["N"] == pytest.approx(-0.0037 * 0.2 + 0.001 * 0.2**3 + 0.02 * 0.07 * 0.2, rel=1e-12)
     assert loads["M"] == 0.0
+    rolled = {"extended": {"details": {"Xuu": {"value": -0.0013},
+                                       "Kp": {"value": -0.0004, "nonlinear": -0.0002, "nonlinear_term": "abs"},
+                                       "Yp": {"value": 0.0003, "nonlinear": 0.0, "nonlinear_term": "none"}}}}
+    roll = QuasiSteadyLoads(rolled).at(Condition(3.344, roll_rate_prime=-0.5))
+    assert roll["K"] == pytest.approx(-0.0004 * -0.5 - 0.0002 * -0.5 * 0.5, rel=1e-12)
+    assert roll["Y"] == pytest.approx(0.0003 * -0.5, rel=1e-12) and roll["N"] == 0.0
 
 
 def test_a_file_that_is_not_a_table_is_named(tmp_path):

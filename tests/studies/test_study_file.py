@@ -50,9 +50,17 @@ def test_the_fit_model_is_read_from_the_study_file(tmp_path):
 
 
 def test_run_order_starts_straight_and_moves_outward():
-    cs = (Condition(3, drift_deg=8), Condition(3), Condition(3, drift_deg=-4), Condition(3, yaw_rate_prime=0.3))
+    cs = (Condition(3, drift_deg=8), Condition(3), Condition(3, drift_deg=-4), Condition(3, yaw_rate_prime=0.3),
+          Condition(3, roll_rate_prime=0.5))
     order = run_order(cs)
     assert order[0] == Condition(3) and order[1] == Condition(3, drift_deg=-4)
+    assert order[-1] == Condition(3, roll_rate_prime=0.5)  # a roll sits at its own distance, p' = 0.5
+
+
+def test_a_roll_sweep_is_read_from_the_study_file(tmp_path):
+    study = Study.load(write(tmp_path, GOOD.replace("[sweeps]", "[sweeps]\nroll_rate_prime = [-0.5, 0.5]")))
+    rolls = [c for c in study.conditions if c.roll_rate_prime]
+    assert sorted(c.roll_rate_prime for c in rolls) == [-0.5, 0.5] and len(study.conditions) == 9
 
 
 @pytest.mark.parametrize(

@@ -11,6 +11,8 @@ equations, which a manoeuvring simulation takes besides them:
   Z' = Z'* u'^2 + Z'vv v'^2 in drift, likewise M'vv, Z'rr and M'rr; Z'* and M'* are the straight run's;
 - the roll moment, which that mirror reverses with v' and r': K'v and K'r, fitted as the main table's
   derivatives are (slope, nonlinear term, offset);
+- where the study ran a roll-rate sweep, the roll damping K'p and the side force and yaw moment of a roll,
+  Y'p and N'p (odd in p' by the same mirror; they vanish on a body with both mirror planes), fitted alike;
 - where the study also ran conditions that combine drift with a yaw rate, the interaction that the
   single-variable sweeps leave out (X'vr, Y'|v|r, Y'v|r|, ...; see :func:`interaction_terms`).
 
@@ -27,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from ..case import Condition
+from ..case.conditions import SWEEP_KEYS
 from .fit import EvenFit, least_squares
 from .table import (DEFINITIONS, fit_sweeps, fitted_range, motion_variable, straight_loads, sweep_points, table_rows,
                     write_csv)
@@ -46,6 +49,9 @@ EVEN_TERMS = {
 ROLL_DEFINITIONS = {
     "Kv": ("drift_deg", "K", "static"),
     "Kr": ("yaw_rate_prime", "K", "rotary"),
+    "Kp": ("roll_rate_prime", "K", "rotary"),
+    "Yp": ("roll_rate_prime", "Y", "rotary"),
+    "Np": ("roll_rate_prime", "N", "rotary"),
 }
 # term -> coefficient: the straight run's own loads (u' = 1); all but X'uu vanish on a body with both mirror
 # planes, and Y'*, K'* and N'* on any body with the vertical one: there they are the mesh's asymmetry
@@ -132,8 +138,9 @@ def interaction_terms(results: list[dict]) -> list[ExtendedTerm]:
 
     fitted by least squares with the term's form (v'r' for X', Z', M'; |v'|r' and v'|r'| together for Y',
     K' and N', which need conditions with both relative signs of b and r'). None without such conditions."""
+    others = [k for k in SWEEP_KEYS if k not in ("drift_deg", "yaw_rate_prime")]
     loads = {(r["condition"]["drift_deg"], r["condition"]["yaw_rate_prime"]): r for r in results
-             if r["condition"].get("pitch_deg", 0) == 0 and r["condition"].get("pitch_rate_prime", 0) == 0}
+             if all(r["condition"].get(k, 0) == 0 for k in others)}
     straight = loads.get((0, 0))
     combined = [key for key in loads if key[0] and key[1] and (key[0], 0) in loads and (0, key[1]) in loads]
     if straight is None or not combined:

@@ -46,10 +46,11 @@ DEFINITIONS = {
 
 
 def motion_variable(condition: Condition, sweep: str) -> tuple[float, float]:
-    """(x, u') for a sweep: v' or w' for static sweeps, r' or q' for turns; u' is the axial velocity ratio."""
+    """(x, u') for a sweep: v' or w' for static sweeps, r', q' or p' for turns and rolls; u' is the axial
+    velocity ratio."""
     u, v, w = condition.body_velocity() / condition.speed
     return {"drift_deg": v, "pitch_deg": w, "yaw_rate_prime": condition.yaw_rate_prime,
-            "pitch_rate_prime": condition.pitch_rate_prime}[sweep], u
+            "pitch_rate_prime": condition.pitch_rate_prime, "roll_rate_prime": condition.roll_rate_prime}[sweep], u
 
 
 def _on_sweep(condition: Condition, sweep: str) -> bool:

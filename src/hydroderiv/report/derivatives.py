@@ -10,7 +10,8 @@ import numpy as np
 from ..derivatives.table import DEFINITIONS, SweepFit
 from ._figures import pyplot, save_figure
 
-_AXIS_LABELS = {"drift_deg": "v'", "pitch_deg": "w'", "yaw_rate_prime": "r'", "pitch_rate_prime": "q'"}
+_AXIS_LABELS = {"drift_deg": "v'", "pitch_deg": "w'", "yaw_rate_prime": "r'", "pitch_rate_prime": "q'",
+                "roll_rate_prime": "p'"}
 
 
 def plot_fits(fits: dict[str, SweepFit], path: str | Path, title: str, reference: dict[str, float] | None = None) -> Path:

@@ -5,10 +5,12 @@ Steady captive tests give the part that depends on the velocities alone (the acc
 they do not give). From a table written by `hydroderiv derivatives` (or `study run`), in the prime system:
 
     X' = X'uu u'^2 + X'vv v'^2 + X'ww w'^2 + X'rr r'^2 + X'qq q'^2 + X'vr v'r'
-    Y' = Y'* + Y'v v' + Y'v|v| f(v') + Y'r r' + Y'r|r| f(r') + Y'|v|r |v'|r' + Y'v|r| v'|r'|
+    Y' = Y'* + Y'v v' + Y'v|v| f(v') + Y'r r' + Y'r|r| f(r') + Y'|v|r |v'|r' + Y'v|r| v'|r'| + Y'p p' + ...
     Z' = Z'* + Z'w w' + Z'w|w| f(w') + Z'q q' + Z'q|q| f(q') + Z'vv v'^2 + Z'rr r'^2 + Z'vr v'r'
-    K' = K'* + K'v v' + K'v|v| f(v') + K'r r' + K'r|r| f(r') + K'|v|r |v'|r' + K'v|r| v'|r'|
+    K' = K'* + K'v v' + K'v|v| f(v') + K'r r' + K'r|r| f(r') + K'|v|r |v'|r' + K'v|r| v'|r'| + K'p p' + ...
     M' like Z', N' like Y'
+
+(the roll terms, Y'p p' + Y'p|p| f(p') and likewise in K' and N', where the table's study ran a roll sweep)
 
 with f the nonlinear term each sweep was fitted with (x|x| or x^3, see derivatives/fit.py) and every term the
 table lacks taken as zero. The single-variable sweeps add up; what they leave out when drift and turn come
@@ -31,7 +33,8 @@ from ..derivatives.fit import NONLINEAR_TERMS
 from ..derivatives.table import DEFINITIONS, motion_variable, straight_loads
 from ..errors import HydroderivError
 
-_VARIABLE = {"drift_deg": "v", "pitch_deg": "w", "yaw_rate_prime": "r", "pitch_rate_prime": "q"}
+_VARIABLE = {"drift_deg": "v", "pitch_deg": "w", "yaw_rate_prime": "r", "pitch_rate_prime": "q",
+             "roll_rate_prime": "p"}
 # coefficient -> the straight run's term; (term, motion variable) of the fitted odd terms (main table and
 # roll); (term, form) of the even ("vv", ...) and interaction terms: all from the derivatives' definitions
 _STRAIGHT = {coefficient: name for name, coefficient in STRAIGHT_TERMS.items()}
@@ -83,10 +86,10 @@ class QuasiSteadyLoads:
             raise HydroderivError(f"{path}: cannot read a derivative table ({error})") from None
 
     def coefficients(self, v: float = 0.0, w: float = 0.0, r: float = 0.0, q: float = 0.0,
-                     u: float = 1.0) -> dict[str, float]:
-        """X', Y', Z', K', M', N' at the velocities u' = u/U, v' = v/U, w' = w/U, r' = rL/U and q' = qL/U
-        (U the table's speed, body axes: x forward, y starboard, z down; q > 0 nose up)."""
-        motion = {"v": v, "w": w, "r": r, "q": q}
+                     u: float = 1.0, p: float = 0.0) -> dict[str, float]:
+        """X', Y', Z', K', M', N' at the velocities u' = u/U, v' = v/U, w' = w/U, r' = rL/U, q' = qL/U and
+        p' = pL/U (U the table's speed, body axes: x forward, y starboard, z down; q > 0 nose up)."""
+        motion = {"v": v, "w": w, "r": r, "q": q, "p": p}
         forms = {"vv": v * v, "ww": w * w, "rr": r * r, "qq": q * q, "vr": v * r, "|v|r": abs(v) * r,
                  "v|r|": v * abs(r)}
         loads = {}
@@ -106,7 +109,8 @@ class QuasiSteadyLoads:
         """:meth:`coefficients` at a condition as a study gives it (drift and pitch in degrees, r', q')."""
         v, u = motion_variable(condition, "drift_deg")
         w, _ = motion_variable(condition, "pitch_deg")
-        return self.coefficients(v=v, w=w, r=condition.yaw_rate_prime, q=condition.pitch_rate_prime, u=u)
+        return self.coefficients(v=v, w=w, r=condition.yaw_rate_prime, q=condition.pitch_rate_prime, u=u,
+                                 p=condition.roll_rate_prime)
 
     def _value(self, name: str) -> float:
         return self.terms[name][0] if name in self.terms else 0.0

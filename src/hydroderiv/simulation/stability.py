@@ -265,7 +265,6 @@ class StableSpeeds:
                 f"{self.hydrostatic_moment_range[0]:.3e}), unstable above")
 
 
-
 def vertical_stable_speeds(derivatives: Mapping[str, float], acceleration: Mapping[str, float],
                            mass: MassProperties, bg_m: float) -> StableSpeeds:
     """The range of speeds at which the vertical plane is stable with the hydrostatic moment of z_BG =

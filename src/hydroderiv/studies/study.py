@@ -20,6 +20,7 @@ Example::
     pitch_deg = [-8, -4, 4, 8]
     yaw_rate_prime = [-0.2, -0.1, 0.1, 0.2]
     pitch_rate_prime = []
+    roll_rate_prime = []      # p' = p L / U: the roll damping K'p (and Y'p, N'p)
 
     [[conditions]]            # any further combined conditions
     drift_deg = 4
@@ -226,7 +227,8 @@ def _running(case: Path) -> bool:
 
 def _coordinates(c: Condition) -> np.ndarray:
     """Where a condition sits in the sweep space; degrees and rates scaled to comparable flow changes."""
-    return np.array([np.sin(np.radians(c.drift_deg)), np.sin(np.radians(c.pitch_deg)), c.yaw_rate_prime, c.pitch_rate_prime])
+    return np.array([np.sin(np.radians(c.drift_deg)), np.sin(np.radians(c.pitch_deg)), c.yaw_rate_prime,
+                     c.pitch_rate_prime, c.roll_rate_prime])
 
 
 def run_order(conditions: tuple[Condition, ...]) -> list[Condition]:
