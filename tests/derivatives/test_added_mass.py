@@ -152,3 +152,34 @@ def test_corrected_strip_theory_agrees_with_3d_panels_on_the_bare_hull(suboff):
     matrix = panel_added_mass(equivalent_body_of_revolution(body.surface))
     assert estimate["Yvdot"] == pytest.approx(-matrix[1, 1] / (0.5 * length**3), rel=0.02)
     assert estimate["Nrdot"] == pytest.approx(-matrix[5, 5] / (0.5 * length**5), rel=0.04)
+
+
+def test_a_rolling_ellipse_has_its_exact_added_inertia_and_a_circle_none():
+    """Rolling about its centre, per unit length and density: pi (a^2 - b^2)^2 / 8 for an ellipse (a flat plate
+    of half-width a, pi a^4 / 8), nothing for a circle, and no coupling with sway or heave. Rolled about an
+    axis c below it (z = c), it also sways: a_yp = -c a_yy and a_pp grows by c^2 a_yy."""
+    for a, b in ((0.5, 0.2), (0.5, 0.004)):
+        matrix = section_added_mass([ellipse(a, b, n=512)], with_roll=True)
+        assert matrix[2, 2] == pytest.approx(np.pi * (a * a - b * b) ** 2 / 8, rel=2e-3)
+        assert abs(matrix[0, 2]) < 1e-9 and abs(matrix[1, 2]) < 1e-9
+    circle = section_added_mass([ellipse(0.3, 0.3)], with_roll=True)
+    assert abs(circle[2, 2]) < 1e-6 * np.pi * 0.3**4
+    c = -0.7
+    own = section_added_mass([ellipse(0.5, 0.2, n=512)], with_roll=True)
+    moved = section_added_mass([ellipse(0.5, 0.2, n=512, centre=(0.0, c))], with_roll=True)
+    assert moved[0, 2] == pytest.approx(-c * own[0, 0], rel=1e-3)
+    assert moved[2, 2] == pytest.approx(own[2, 2] + c * c * own[0, 0], rel=1e-3)
+    assert moved[:2, :2] == pytest.approx(own[:2, :2], rel=1e-9)
+
+
+def test_suboff_is_rolled_by_its_fins_and_its_sail(suboff):
+    """The hull is a body of revolution: only the appendages have roll added inertia. AFF-3's cruciform
+    stern couples roll with nothing (K'v. within a hundredth of AFF-8's); AFF-8's sail, above the axis,
+    adds to K'p. and couples roll with sway: K'v. < 0 (a sway acceleration to starboard pushes the sail to
+    port, above the axis: a roll to port)."""
+    aff1, aff3, aff8 = (acceleration_derivatives(suboff(c), n_stations=100, n_panels=320).values
+                        for c in ("AFF-1", "AFF-3", "AFF-8"))
+    assert abs(aff1["Kpdot"]) < 1e-3 * abs(aff3["Kpdot"])
+    assert aff3["Kpdot"] < 0 and aff8["Kpdot"] < aff3["Kpdot"]
+    assert abs(aff3["Kvdot"]) < 0.01 * abs(aff8["Kvdot"]) and aff8["Kvdot"] < 0
+    assert aff8["Kvdot"] == aff8["Ypdot"] and aff8["Krdot"] == aff8["Npdot"]

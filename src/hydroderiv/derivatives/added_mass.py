@@ -39,8 +39,20 @@ inertia of the potential flow the body sets in motion, so they follow from its s
 The 3-D method also checks strip theory where it applies, on a body without thin parts: on SUBOFF's bare
 hull the corrected strip values of Y'v. and N'r. come within 0.6 and 2.2 % of it (a test asks 2 and 4 %).
 
+5. Roll. A section rolling about the body's axis (y = z = 0) with unit rate has dphi/dn = y n_z - z n_y; its
+   added moment of inertia a_pp and its coupling with sway a_yp follow from the same panel method (an
+   ellipse gives rho pi (a^2 - b^2)^2 / 8, a circle nothing: a body of revolution is rolled by its fins and
+   sail alone). Summed over the length,
+
+       K_p. = -\\int a_pp dx     K_v. = Y_p. = -\\int a_yp dx     K_r. = N_p. = -\\int x a_yp dx
+
+   (the heave-roll coupling vanishes on a body that is its own mirror image port to starboard). The
+   spheroid's 3-D factors do not apply to roll, so these are strip theory as it stands, which takes each
+   fin's flow as two-dimensional across its whole chord; K'v. and K'r. come from the sail, standing on one
+   side of the axis.
+
 Prime system on L (Gertler & Hagen 1967): Y'v. = Y_v. / (0.5 rho L^3), Y'r. = Y_r. / (0.5 rho L^4),
-N'r. = N_r. / (0.5 rho L^5). Roll (K'p., the sail's K'v.) is left out.
+N'r. = N_r. / (0.5 rho L^5), K'p. = K_p. / (0.5 rho L^5), K'v. = K_v. / (0.5 rho L^4).
 """
 
 from __future__ import annotations
@@ -61,6 +73,8 @@ STRIP_TERMS = {
     "Zwdot": ("vertical", 0, -1.0), "Zqdot": ("vertical", 1, +1.0), "Mwdot": ("vertical", 1, +1.0),
     "Mqdot": ("vertical", 2, -1.0),
 }
+# name -> (column of strip_added_mass's sections, moment along x): the roll terms, strip theory as it stands
+ROLL_TERMS = {"Kpdot": (2, 0), "Kvdot": (3, 0), "Ypdot": (3, 0), "Krdot": (3, 1), "Npdot": (3, 1)}
 _PANELS_PER_SECTION = 480
 
 
@@ -111,42 +125,50 @@ def _panels(contours: list[np.ndarray], n_panels: int) -> tuple[np.ndarray, np.n
     return start[keep], end[keep]
 
 
-def section_added_mass(contours: list[np.ndarray], n_panels: int = _PANELS_PER_SECTION) -> np.ndarray:
+def section_added_mass(contours: list[np.ndarray], n_panels: int = _PANELS_PER_SECTION,
+                       with_roll: bool = False) -> np.ndarray:
     """The 2x2 added-mass matrix per unit length and unit density, [[a_yy, a_yz], [a_zy, a_zz]] in m^2, of a
     2-D section whose closed ``contours`` ((n, 2) arrays of (y, z)) turn from +y towards +z (holes the other
-    way), as :func:`~hydroderiv.geometry.surfaces.cross_section_contours` gives them."""
+    way), as :func:`~hydroderiv.geometry.surfaces.cross_section_contours` gives them. ``with_roll`` adds the
+    roll about the origin (y = z = 0) as a third motion: 3x3, a_pp in m^4 and a_yp, a_zp in m^3."""
+    size = 3 if with_roll else 2
     contours = [np.asarray(c, dtype=float) for c in contours if len(c) >= 3]
     if not contours:
-        return np.zeros((2, 2))
+        return np.zeros((size, size))
     start, end = _panels(contours, n_panels)
     length = np.linalg.norm(end - start, axis=1)
     tangent = (end - start) / length[:, None]
     # the contour turns from +y towards +z, so the body lies to the left of its direction and the fluid to
     # the right: the outward normal (into the fluid) is the tangent turned by -90 degrees
     normal = np.column_stack([tangent[:, 1], -tangent[:, 0]])
-    single_layer, double_layer = _panel_influence(0.5 * (start + end), start, tangent, normal, length)
+    middle = 0.5 * (start + end)
+    single_layer, double_layer = _panel_influence(middle, start, tangent, normal, length)
     np.fill_diagonal(double_layer, 0.0)
+    # dphi/dn of each unit motion: sway n_y, heave n_z and, rolling about the origin, y n_z - z n_y
+    modes = (np.column_stack([normal, middle[:, 0] * normal[:, 1] - middle[:, 1] * normal[:, 0]]) if with_roll
+             else normal)
     # Green's identity for the exterior flow at each panel's middle, phi piecewise constant (a direct
     # method: it solves for phi itself, which stays accurate across a thin fin, where a source layer needs
     # panels finer than the fin's thickness to carry the jump in phi from one face to the other):
-    #     phi_i / 2 + sum_j phi_j \int_j dG/dn = sum_j (dphi/dn)_j \int_j G,   dphi/dn = n_y or n_z
-    phi = np.linalg.solve(0.5 * np.eye(len(length)) + double_layer, single_layer @ normal)
-    return -(phi * length[:, None]).T @ normal
+    #     phi_i / 2 + sum_j phi_j \int_j dG/dn = sum_j (dphi/dn)_j \int_j G
+    phi = np.linalg.solve(0.5 * np.eye(len(length)) + double_layer, single_layer @ modes)
+    return -(phi * length[:, None]).T @ modes
 
 
 def strip_added_mass(surface: TriSurface, n_stations: int = 160,
                      n_panels: int = _PANELS_PER_SECTION) -> tuple[np.ndarray, np.ndarray]:
     """Stations x (cosine-spaced, end points included) and each section's a_yy and a_zz (m^2, per unit
-    density) of a closed surface in body axes: arrays (n,) and (n, 2)."""
+    density), a_pp (m^4) and a_yp (m^3, roll about the x axis) of a closed surface in body axes: arrays (n,)
+    and (n, 4)."""
     lo, hi = surface.bounds[:, 0]
     if not hi > lo:
         raise GeometryError("the surface has no extent along x")
     # cosine spacing crowds the stations where the sections change fastest, at the nose and the tail
     x = 0.5 * (lo + hi) - 0.5 * (hi - lo) * np.cos(np.pi * np.arange(n_stations + 1) / n_stations)
-    sections = np.zeros((len(x), 2))
+    sections = np.zeros((len(x), 4))
     for k, contours in enumerate(cross_section_contours(surface, x[1:-1]), start=1):
-        matrix = section_added_mass(contours, n_panels)
-        sections[k] = matrix[0, 0], matrix[1, 1]
+        matrix = section_added_mass(contours, n_panels, with_roll=True)
+        sections[k] = matrix[0, 0], matrix[1, 1], matrix[2, 2], matrix[0, 2]
     return x, sections
 
 
@@ -227,7 +249,8 @@ class AccelerationDerivatives:
     """The acceleration derivatives of a body, estimated from its shape (see the module's docstring).
 
     ``values``: prime units (Gertler & Hagen 1967) on ``length``, keys Xudot, Yvdot, Yrdot, Nvdot, Nrdot,
-    Zwdot, Zqdot, Mwdot, Mqdot; ``strip``: the same before the 3-D correction (no Xudot); ``factors``: the
+    Zwdot, Zqdot, Mwdot, Mqdot and the roll terms Kpdot, Kvdot = Ypdot, Krdot = Npdot (strip theory as it
+    stands); ``strip``: the same before the 3-D correction (no Xudot); ``factors``: the
     equivalent spheroid's k1, k2, k', the corrections applied to translation, coupling and rotation, and
     the spheroid's X'u. (``Xudot_spheroid``) beside the one computed."""
 
@@ -249,7 +272,7 @@ def acceleration_derivatives(body: Body, n_stations: int = 160,
     """The acceleration derivatives of ``body`` about its moment centre, in prime units on its L."""
     surface, length = body.surface, body.reference.length
     x, sections = strip_added_mass(surface, n_stations, n_panels)
-    moments = np.array([[np.trapezoid(x**k * sections[:, j], x) for j in range(2)] for k in range(3)])
+    moments = np.array([[np.trapezoid(x**k * sections[:, j], x) for j in range(sections.shape[1])] for k in range(3)])
     # the equivalent spheroid: the body's overall length and volume
     lo, hi = surface.bounds[:, 0]
     semi_major = 0.5 * (hi - lo)
@@ -263,6 +286,9 @@ def acceleration_derivatives(body: Body, n_stations: int = 160,
         column = 0 if plane == "horizontal" else 1
         strip[name] = float(sign * moments[moment, column] / (0.5 * length ** (3 + moment)))
         values[name] = strip[name] * correction[moment]
+    for name, (column, moment) in ROLL_TERMS.items():
+        # K_p. over L^5, K_v. over L^4, K_r. over L^5: the roll's own arm counts like a length
+        strip[name] = values[name] = float(-moments[moment, column] / (0.5 * length ** (4 + moment + (column == 2))))
     axial = panel_added_mass(equivalent_body_of_revolution(surface))[0, 0]
     values = {"Xudot": float(-axial / (0.5 * length**3)), **values}
     factors = {**lamb, "translation": correction[0], "coupling": correction[1], "rotation": correction[2],
