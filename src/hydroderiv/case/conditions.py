@@ -2,8 +2,8 @@
 
 Body axes: x forward, y starboard, z down, origin at the moment centre B (Roddy 1990). A condition is a
 speed U plus any combination of a drift angle beta, a pitch angle alpha, a steady turn (yaw rate r,
-pitch rate q) and a steady roll (roll rate p about the x axis through B). Sign conventions follow the seed paper's single-point definitions
-(Y'v = -Y'/(cos b sin b), Z'w = -Z'/(cos a sin a)):
+pitch rate q) and a steady roll (roll rate p about the x axis through B). Sign conventions follow the seed
+paper's single-point definitions (Y'v = -Y'/(cos b sin b), Z'w = -Z'/(cos a sin a)):
 
 - beta > 0: the bow is turned to starboard of the path, so v = -U sin(beta) < 0;
 - alpha > 0: the bow is pitched down relative to the path, so w = -U sin(alpha) cos(beta) < 0;
@@ -37,7 +37,8 @@ SWEEP_KEYS = ("drift_deg", "pitch_deg", "yaw_rate_prime", "pitch_rate_prime", "r
 
 MAX_INCIDENCE_DEG = 30.0  # the far field accepts any inflow direction; beyond this the wake leaves its refinement
 MAX_RATE_PRIME = 1.0  # r' = L/R0 = 1 puts the turn centre one body length away, beyond any rotating-arm test
-# p' = 2 turns a fin tip 0.08 L from the axis at 0.16 U, 9 degrees of helix: well into a fin's linear range
+# p' = 2 moves a point 0.1 L from the axis (SUBOFF's sail tip) at 0.2 U, 11 degrees of helix: about where a
+# fin's lift stops being linear in its incidence
 MAX_ROLL_RATE_PRIME = 2.0
 
 

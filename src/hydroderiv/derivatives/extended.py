@@ -45,7 +45,8 @@ EVEN_TERMS = {
     "Zrr": ("yaw_rate_prime", "Z"),
     "Mrr": ("yaw_rate_prime", "M"),
 }
-# term -> (sweep, coefficient, kind), as the main table's DEFINITIONS: the roll moment, odd in v' and r'
+# term -> (sweep, coefficient, kind), as the main table's DEFINITIONS: the roll moment, odd in v', r' and p',
+# and the side force and yaw moment of a roll
 ROLL_DEFINITIONS = {
     "Kv": ("drift_deg", "K", "static"),
     "Kr": ("yaw_rate_prime", "K", "rotary"),
