@@ -75,6 +75,9 @@ STRIP_TERMS = {
 }
 # name -> (column of strip_added_mass's sections, moment along x): the roll terms, strip theory as it stands
 ROLL_TERMS = {"Kpdot": (2, 0), "Kvdot": (3, 0), "Ypdot": (3, 0), "Krdot": (3, 1), "Npdot": (3, 1)}
+# the power of length in each column of strip_added_mass's sections (a_yy, a_zz in m^2, a_pp in m^4, a_yp in
+# m^3): a term's moment k along x then has the power 1 + this + k, the power of L that makes it prime
+_SECTION_LENGTH_POWER = (2, 2, 4, 3)
 _PANELS_PER_SECTION = 480
 
 
@@ -287,8 +290,8 @@ def acceleration_derivatives(body: Body, n_stations: int = 160,
         strip[name] = float(sign * moments[moment, column] / (0.5 * length ** (3 + moment)))
         values[name] = strip[name] * correction[moment]
     for name, (column, moment) in ROLL_TERMS.items():
-        # K_p. over L^5, K_v. over L^4, K_r. over L^5: the roll's own arm counts like a length
-        strip[name] = values[name] = float(-moments[moment, column] / (0.5 * length ** (4 + moment + (column == 2))))
+        power = 1 + _SECTION_LENGTH_POWER[column] + moment  # K_p. and K_r. over L^5, K_v. over L^4
+        strip[name] = values[name] = float(-moments[moment, column] / (0.5 * length**power))
     axial = panel_added_mass(equivalent_body_of_revolution(surface))[0, 0]
     values = {"Xudot": float(-axial / (0.5 * length**3)), **values}
     factors = {**lamb, "translation": correction[0], "coupling": correction[1], "rotation": correction[2],

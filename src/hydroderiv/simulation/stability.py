@@ -226,8 +226,7 @@ def vertical_characteristic_coefficients(derivatives: Mapping[str, float], accel
     """The cubic det(lambda M - K) of the vertical plane with the attitude in the state, as (a3, a2, a1, a0),
     each a pair (value without the hydrostatic moment, change per unit h'): a_k = c_k + s_k h'. See the
     module docstring."""
-    stiffness = stiffness_matrix({k: float(derivatives[k]) for k in _names("vertical")}, "vertical", mass)
-    inertia = mass_matrix(acceleration, "vertical", mass)
+    stiffness, inertia = _state_matrices(derivatives, acceleration, "vertical", mass, 0.0)
     (m11, m12), (m21, m22) = inertia
     (k11, k12), (k21, k22) = stiffness
     # det(lambda M - K) = det M lambda^2 - (m11 k22 + m22 k11 - m12 k21 - m21 k12) lambda + det K, times lambda,
@@ -254,15 +253,15 @@ class StableSpeeds:
         return asdict(self)
 
     def describe(self) -> str:
+        prefix = f"with z_BG = {self.bg_m:g} m the vertical plane is"
         if not self.stable_anywhere:
-            return f"with z_BG = {self.bg_m:g} m the vertical plane is unstable at every speed"
+            return f"{prefix} unstable at every speed"
         if self.highest_m_s is None:
-            return (f"with z_BG = {self.bg_m:g} m the vertical plane is stable at every speed" if not self.lowest_m_s
-                    else f"with z_BG = {self.bg_m:g} m the vertical plane is stable above {self.lowest_m_s:.3f} m/s")
+            return (f"{prefix} stable above {self.lowest_m_s:.3f} m/s" if self.lowest_m_s
+                    else f"{prefix} stable at every speed")
         low = f"from {self.lowest_m_s:.3f} m/s " if self.lowest_m_s else ""
-        return (f"with z_BG = {self.bg_m:g} m the vertical plane is stable {low}up to {self.highest_m_s:.3f} m/s "
-                f"({self.highest_m_s / KNOT:.2f} kn; h' = m' g z_BG / U^2 above "
-                f"{self.hydrostatic_moment_range[0]:.3e}), unstable above")
+        return (f"{prefix} stable {low}up to {self.highest_m_s:.3f} m/s ({self.highest_m_s / KNOT:.2f} kn; "
+                f"h' = m' g z_BG / U^2 above {self.hydrostatic_moment_range[0]:.3e}), unstable above")
 
 
 def vertical_stable_speeds(derivatives: Mapping[str, float], acceleration: Mapping[str, float],
@@ -365,11 +364,11 @@ def stability_report(values: Mapping[str, float], stderr: Mapping[str, float], m
         inertia = mass.iz_prime if plane == "horizontal" else mass.iy_prime
         if acceleration is None or inertia is None or not all(k in acceleration for k in ACCELERATION[plane]):
             return result.as_dict()
-        if plane == "horizontal" or not bg_m:
-            return {**result.as_dict(), "motion": plane_motion(derivatives, acceleration, plane, mass).as_dict()}
-        motion = plane_motion(derivatives, acceleration, plane, mass, hydrostatic)
-        return {**result.as_dict(), "motion": motion.as_dict(),
-                "stable_speeds": vertical_stable_speeds(derivatives, acceleration, mass, bg_m).as_dict()}
+        moment = hydrostatic if plane == "vertical" else 0.0  # the hydrostatic moment acts in pitch only
+        record = {**result.as_dict(), "motion": plane_motion(derivatives, acceleration, plane, mass, moment).as_dict()}
+        if moment:
+            record["stable_speeds"] = vertical_stable_speeds(derivatives, acceleration, mass, bg_m).as_dict()
+        return record
 
     return {"mass": asdict(mass),
             **{plane: {"computed": entry(s, values),
