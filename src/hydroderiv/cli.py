@@ -68,6 +68,8 @@ def _progress_printer(label: Callable[[object], str], every: int = 25):
         residuals = " ".join(f"{k} {v:.1e}" for k, v in p.residuals.items())
         x, y, z, k, m, n = p.coefficients
         drift = "-" if p.drift is None else f"{p.drift.max():.2f}"
+        if p.drift is not None and p.drift.max() <= 1.0:
+            drift += " (flat: checking an earlier window agrees)"  # see ConvergenceCriterion
         console.print(
             f"  {label(key)} it {p.iteration:5d} | {residuals} | X' {x:+.3e} Y' {y:+.2e} Z' {z:+.2e} "
             f"M' {m:+.2e} N' {n:+.2e} | drift/tol {drift} | {p.elapsed:.0f} s",

@@ -67,7 +67,8 @@ def _to_float(text: str) -> float:
 
 @dataclass(frozen=True)
 class ConvergenceCriterion:
-    """Forces converged: the mean of every monitored coefficient has stopped drifting.
+    """Forces converged: the mean of every monitored coefficient has stopped drifting, and a second look
+    half a window or more later finds the same mean.
 
     A straight line is fitted to each coefficient over the last ``window`` iterations; its rise across the
     window must be at most ``rel_tol`` of the load scale, or at most ``abs_tol`` (prime units). The load
@@ -83,12 +84,22 @@ class ConvergenceCriterion:
     at drift sheds gently and keeps the side force swinging by a few per cent about a fixed mean. The
     window mean is the result; the window's standard deviation is its iterative uncertainty.
 
-    ``min_iterations`` keeps the start-up transient out of the window; ``max_iterations`` ends a run that
-    never settles (it is then reported as not converged). A warm start from a neighbouring condition first
-    overshoots and then recovers, and a straight line fitted through such a V is flat: with a window that
-    could reach back to iteration 21, the AFF-8 resistance runs at 16 and 17.8 knots (warm-started from the
-    speed below, their drag dipping by 10 % at iteration 50 and back by 200) stopped at 121 iterations, 4.5-6 %
-    below the drag they converge to. So the window starts at iteration 50 at the earliest, after the dip.
+    But a straight line cannot see a V. A load that dips and recovers, as one warm-started from a
+    neighbouring condition often does, gives a flat line whenever the bottom of the dip sits mid-window,
+    however far the load still has to go: the main job's coarse AFF-8 turn at r' = +0.1 stopped there at
+    iteration 127, its side force 8.9 % short of where it settles by iteration 200 (Y' dipped from 0.141e-3
+    at iteration 66 to 0.123e-3 at 93 and was rising at 125). So the trend must also have been flat in an
+    earlier window ending between one and half a window before, with a mean that agrees with today's to
+    the same tolerance. A load that has settled passes half a window after it first does; a V is rejected,
+    since the earlier window holds its falling branch; an oscillation about a fixed mean still passes, at
+    the same phase one period apart.
+
+    ``min_iterations`` keeps the start-up transient out of the windows (each window's last iteration is at
+    least that); ``max_iterations`` ends a run that never settles (it is then reported as not converged). A
+    warm start from a neighbouring condition first overshoots and then recovers: with a window that could
+    reach back to iteration 21, the AFF-8 resistance runs at 16 and 17.8 knots (warm-started from the speed
+    below, their drag dipping by 10 % at iteration 50 and back by 200) stopped at 121 iterations, 4.5-6 %
+    below the drag they converge to. So a window starts at iteration 50 at the earliest, after the dip.
     """
 
     window: int = 100
@@ -109,24 +120,58 @@ class ConvergenceCriterion:
         """This criterion with ``loads`` held to their own size as well (a condition's defining loads)."""
         return replace(self, own_scale=tuple(dict.fromkeys((*self.own_scale, *loads))))
 
-    def drift(self, coefficients: np.ndarray) -> np.ndarray:
-        """Per monitored coefficient: its drift over the window over the tolerance it must meet (<= 1 passes)."""
-        recent = np.asarray(coefficients)[-self.window :]
-        offsets = np.arange(len(recent)) - (len(recent) - 1) / 2.0
-        slope = offsets @ (recent - recent.mean(axis=0)) / max(offsets @ offsets, 1.0)
-        drift = np.abs(slope) * (len(recent) - 1)
-        mean = np.abs(recent.mean(axis=0))
-        scale = np.repeat([mean[:3].max(), mean[3:].max()], 3)
+    def _allowed(self, means: np.ndarray) -> np.ndarray:
+        """The change each coefficient may show, from window means (rows: windows, columns: X' ... N')."""
+        magnitude = np.abs(means)
+        scale = np.repeat(np.stack([magnitude[:, :3].max(axis=1), magnitude[:, 3:].max(axis=1)], axis=1), 3, axis=1)
         own = [COEFFICIENTS.index(name) for name in self.own_scale]
-        scale[own] = mean[own]
-        allowed = np.maximum(self.rel_tol * scale, self.abs_tol)
-        columns = [COEFFICIENTS.index(name) for name in self.monitored]
-        return (drift / allowed)[columns]
+        scale[:, own] = magnitude[:, own]
+        return np.maximum(self.rel_tol * scale, self.abs_tol)
 
-    def is_met(self, iterations: np.ndarray, coefficients: np.ndarray) -> bool:
+    def _windows(self, coefficients: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+        """Means and trends (rise of the least-squares line across the window over the allowed change) of
+        every full window, the one ending at sample ``window`` first and the latest last; from running sums,
+        so a run of thousands of iterations is judged at every poll without refitting each window."""
+        y = np.asarray(coefficients, dtype=float)
+        n, width = len(y), self.window
+        offsets = np.arange(width) - (width - 1) / 2.0
+        # sum over a window of y and of (index within the window) * y, from cumulative sums
+        sum_y = np.concatenate([np.zeros((1, 6)), np.cumsum(y, axis=0)])
+        sum_jy = np.concatenate([np.zeros((1, 6)), np.cumsum(np.arange(n)[:, None] * y, axis=0)])
+        starts = np.arange(n - width + 1)[:, None]
+        window_y = sum_y[width:] - sum_y[:-width]
+        window_iy = sum_jy[width:] - sum_jy[:-width] - starts * window_y
+        means = window_y / width
+        slope = (window_iy - (width - 1) / 2.0 * window_y) / max(offsets @ offsets, 1.0)
+        return means, np.abs(slope) * (width - 1) / self._allowed(means)
+
+    def drift(self, coefficients: np.ndarray) -> np.ndarray:
+        """Per monitored coefficient: its drift over the latest window over the tolerance it must meet (<= 1
+        passes)."""
+        columns = [COEFFICIENTS.index(name) for name in self.monitored]
+        return self._windows(np.asarray(coefficients)[-self.window :])[1][-1, columns]
+
+    def is_met(self, iterations: np.ndarray, coefficients: np.ndarray, since: int | None = None) -> bool:
+        """Whether the loads have settled; with ``since``, judged on windows of iterations after it only
+        (a run that switched its convection scheme there)."""
+        iterations = np.asarray(iterations)
         if len(iterations) < self.window or iterations[-1] < self.min_iterations:
             return False
-        return bool(np.all(self.drift(coefficients) <= 1.0))
+        means, trends = self._windows(coefficients)
+        columns = [COEFFICIENTS.index(name) for name in self.monitored]
+        window_ends = iterations[self.window - 1 :]
+        window_starts = iterations[: len(iterations) - self.window + 1]
+        flat = np.all(trends[:, columns] <= 1.0, axis=1)
+        flat &= window_ends >= self.min_iterations
+        if since is not None:
+            flat &= window_starts > since
+        if not flat[-1]:
+            return False
+        latest = len(flat) - 1
+        earlier = np.arange(max(latest - self.window, 0), latest - self.window // 2 + 1)
+        earlier = earlier[flat[earlier]]
+        agree = np.abs(means[earlier] - means[latest]) <= self._allowed(means[latest : latest + 1])
+        return bool(np.any(np.all(agree[:, columns], axis=1)))
 
 
 def force_divergence(coefficients: np.ndarray, limit: float = 1.0) -> str | None:

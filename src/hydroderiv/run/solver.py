@@ -36,7 +36,7 @@ class Progress:
     iteration: int
     residuals: dict[str, float]
     coefficients: np.ndarray | None  # latest (X', Y', Z', K', M', N')
-    drift: np.ndarray | None  # drift of the window mean / tolerance per coefficient (<= 1 is converged)
+    drift: np.ndarray | None  # latest window's trend / tolerance per coefficient (<= 1: flat, see is_met)
     elapsed: float
 
 
@@ -96,7 +96,7 @@ def run_steady(
 
     With ``second_order_from``, the case starts with first-order convection: at that iteration its
     convection schemes are switched to second order (simpleFoam re-reads fvSchemes), and convergence is
-    judged only on a full window of second-order iterations. ``limiters_after_switch`` are the
+    judged only on windows of second-order iterations. ``limiters_after_switch`` are the
     gradient limiters after the switch.
     """
     case = Path(case)
@@ -109,10 +109,6 @@ def run_steady(
     diverged: str | None = None
     iterations, coefficients = np.empty(0), np.empty((0, 6))
     switch_pending = second_order_from is not None
-
-    def judged(its: np.ndarray) -> bool:
-        # the averaging window must hold second-order iterations only
-        return second_order_from is None or (len(its) > 0 and its[-1] >= second_order_from + criterion.window)
 
     # Appending keeps the log of an interrupted run that this call resumes.
     with open(log_path, "a") as log_out, open(log_path) as log_in:
@@ -135,7 +131,8 @@ def run_steady(
                 if switch_pending and watcher.iteration >= second_order_from:
                     switch_to_second_order_convection(case, limiters_after_switch)
                     switch_pending = False
-                if not stop_requested and judged(iterations) and criterion.is_met(iterations, coefficients):
+                # the windows judged must hold second-order iterations only
+                if not stop_requested and criterion.is_met(iterations, coefficients, since=second_order_from):
                     (case / STOP_FILE).touch()
                     stop_requested = True
                 time.sleep(poll_seconds)
@@ -154,7 +151,7 @@ def run_steady(
         raise OpenFOAMError(f"simpleFoam wrote no forces in {case}; log: {log_path}")
     # Converged if the criterion stopped the run (the solver may run an iteration or two past the request,
     # nudging a drift just over its tolerance), or if it holds at the end.
-    converged = stop_requested or (not switch_pending and judged(iterations) and criterion.is_met(iterations, coefficients))
+    converged = stop_requested or (not switch_pending and criterion.is_met(iterations, coefficients, since=second_order_from))
     per_component = {}
     for name in components:
         sampled, history = coefficient_history(case, scales, component_function_name(name))
