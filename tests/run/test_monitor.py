@@ -117,6 +117,12 @@ def test_the_trend_is_the_least_squares_line_of_each_window():
         mean = np.abs(window.mean(axis=0))
         allowed = 0.01 * np.array([mean[:3].max(), mean[:3].max(), mean[2], *[mean[3:].max()] * 3])
         assert c.drift(loads[:end]) == pytest.approx(rise / allowed, rel=1e-9)
+    # before a full window, the drift of the samples there are (the progress display asks for it)
+    start = loads[:25]
+    mean = np.abs(start.mean(axis=0))
+    allowed = 0.01 * np.array([mean[:3].max(), mean[:3].max(), mean[2], *[mean[3:].max()] * 3])
+    rise = np.abs(np.polyfit(np.arange(25), start, 1)[0]) * 24
+    assert c.drift(start) == pytest.approx(rise / allowed, rel=1e-9)
 
 
 def test_windows_before_a_scheme_switch_are_not_judged():

@@ -89,8 +89,8 @@ class ConvergenceCriterion:
     however far the load still has to go: the main job's coarse AFF-8 turn at r' = +0.1 stopped there at
     iteration 127, its side force 8.9 % short of where it settles by iteration 200 (Y' dipped from 0.141e-3
     at iteration 66 to 0.123e-3 at 93 and was rising at 125). So the trend must also have been flat in an
-    earlier window ending between one and half a window before, with a mean that agrees with today's to
-    the same tolerance. A load that has settled passes half a window after it first does; a V is rejected,
+    earlier window ending between one and half a window before, with a mean that agrees with the latest
+    one's to the same tolerance. A load that has settled passes half a window after it first does; a V is rejected,
     since the earlier window holds its falling branch; an oscillation about a fixed mean still passes, at
     the same phase one period apart.
 
@@ -128,12 +128,12 @@ class ConvergenceCriterion:
         scale[:, own] = magnitude[:, own]
         return np.maximum(self.rel_tol * scale, self.abs_tol)
 
-    def _windows(self, coefficients: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    def _windows(self, coefficients: np.ndarray, width: int) -> tuple[np.ndarray, np.ndarray]:
         """Means and trends (rise of the least-squares line across the window over the allowed change) of
-        every full window, the one ending at sample ``window`` first and the latest last; from running sums,
+        every full window of ``width`` samples, the first one first and the latest last; from running sums,
         so a run of thousands of iterations is judged at every poll without refitting each window."""
         y = np.asarray(coefficients, dtype=float)
-        n, width = len(y), self.window
+        n = len(y)
         offsets = np.arange(width) - (width - 1) / 2.0
         # sum over a window of y and of (index within the window) * y, from cumulative sums
         sum_y = np.concatenate([np.zeros((1, 6)), np.cumsum(y, axis=0)])
@@ -146,10 +146,11 @@ class ConvergenceCriterion:
         return means, np.abs(slope) * (width - 1) / self._allowed(means)
 
     def drift(self, coefficients: np.ndarray) -> np.ndarray:
-        """Per monitored coefficient: its drift over the latest window over the tolerance it must meet (<= 1
-        passes)."""
+        """Per monitored coefficient: its drift over the latest window (or over every sample, while there
+        are fewer) over the tolerance it must meet (<= 1 passes)."""
+        recent = np.asarray(coefficients)[-self.window :]
         columns = [COEFFICIENTS.index(name) for name in self.monitored]
-        return self._windows(np.asarray(coefficients)[-self.window :])[1][-1, columns]
+        return self._windows(recent, len(recent))[1][-1, columns]
 
     def is_met(self, iterations: np.ndarray, coefficients: np.ndarray, since: int | None = None) -> bool:
         """Whether the loads have settled; with ``since``, judged on windows of iterations after it only
@@ -157,7 +158,7 @@ class ConvergenceCriterion:
         iterations = np.asarray(iterations)
         if len(iterations) < self.window or iterations[-1] < self.min_iterations:
             return False
-        means, trends = self._windows(coefficients)
+        means, trends = self._windows(coefficients, self.window)
         columns = [COEFFICIENTS.index(name) for name in self.monitored]
         window_ends = iterations[self.window - 1 :]
         window_starts = iterations[: len(iterations) - self.window + 1]
