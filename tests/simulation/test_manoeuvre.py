@@ -130,6 +130,8 @@ def test_impossible_simulations_are_named():
         ManoeuvreSimulation(loads, ACCELERATION, MASS, "diagonal")
     with pytest.raises(ConfigurationError, match="pitch"):
         ManoeuvreSimulation(loads, ACCELERATION, MASS, "horizontal", hydrostatic_moment_prime=0.001)
+    with pytest.raises(ConfigurationError, match="zero or positive"):  # centre of gravity above the buoyancy
+        ManoeuvreSimulation(loads, ACCELERATION, MASS, "vertical", hydrostatic_moment_prime=-0.001)
     with pytest.raises(ConfigurationError, match="Xudot"):
         ManoeuvreSimulation(loads, {k: v for k, v in ACCELERATION.items() if k != "Xudot"}, MASS)
     with pytest.raises(ConfigurationError, match="moment of inertia"):

@@ -40,7 +40,7 @@ from scipy.integrate import solve_ivp
 
 from ..errors import ConfigurationError
 from .quasi_steady import QuasiSteadyLoads
-from .stability import GRAVITY, PLANES, MassProperties, mass_matrix
+from .stability import GRAVITY, PLANES, MassProperties, checked_hydrostatic_moment, mass_matrix
 
 # plane -> (sway or heave velocity, rate, force, moment, angle): the table's and the quasi-steady model's names
 _PLANE = {"horizontal": ("v", "r", "Y", "N", "psi"), "vertical": ("w", "q", "Z", "M", "theta")}
@@ -90,9 +90,7 @@ class ManoeuvreSimulation:
         self.plane = plane
         self.loads = loads
         self.reach = dict(reach or {})
-        self.hydrostatic_moment_prime = float(hydrostatic_moment_prime)
-        if plane == "horizontal" and self.hydrostatic_moment_prime:
-            raise ConfigurationError("a hydrostatic moment acts in pitch: give it for the vertical plane only")
+        self.hydrostatic_moment_prime = checked_hydrostatic_moment(plane, hydrostatic_moment_prime)
         self.mass = mass
         self._lateral_inertia = mass_matrix(acceleration, plane, mass)  # also checks that M is complete
         self._surge_inertia = mass.mass_prime - float(acceleration["Xudot"])

@@ -192,15 +192,24 @@ def hydrostatic_moment_prime(mass: MassProperties, bg_m: float, speed_m_s: float
     return mass.mass_prime * GRAVITY * bg_m / speed_m_s**2
 
 
+def checked_hydrostatic_moment(plane: str, moment_prime: float) -> float:
+    """The hydrostatic moment h' for motion in ``plane``, refused where it cannot act: it must be finite and
+    zero or positive (the centre of gravity below the buoyancy), and it acts in pitch only."""
+    moment_prime = float(moment_prime)
+    if not (np.isfinite(moment_prime) and moment_prime >= 0):
+        raise ConfigurationError(f"the hydrostatic moment h' must be zero or positive, not {moment_prime}")
+    if moment_prime and plane != "vertical":
+        raise ConfigurationError("a hydrostatic moment acts in pitch: give it for the vertical plane only")
+    return moment_prime
+
+
 def _state_matrices(derivatives: Mapping[str, float], acceleration: Mapping[str, float], plane: str,
                     mass: MassProperties, hydrostatic: float) -> tuple[np.ndarray, np.ndarray]:
     """(K, M) of M x. = K x: x = (v', r'), (w', q') or, with a hydrostatic moment h', (w', q', theta)."""
     stiffness = stiffness_matrix({k: float(derivatives[k]) for k in _names(plane)}, plane, mass)
     inertia = mass_matrix(acceleration, plane, mass)
-    if not hydrostatic:
+    if not checked_hydrostatic_moment(plane, hydrostatic):
         return stiffness, inertia
-    if plane != "vertical":
-        raise ConfigurationError("a hydrostatic moment acts in pitch: give it for the vertical plane only")
     # theta. = q'; the moment equation gains -h' theta
     return (np.block([[stiffness, np.array([[0.0], [-hydrostatic]])], [np.array([[0.0, 1.0, 0.0]])]]),
             np.block([[inertia, np.zeros((2, 1))], [np.array([[0.0, 0.0, 1.0]])]]))
@@ -211,8 +220,6 @@ def plane_motion(derivatives: Mapping[str, float], acceleration: Mapping[str, fl
     """The roots of the linearised motion in ``plane`` (see :class:`PlaneMotion`), with the hydrostatic moment
     h' (:func:`hydrostatic_moment_prime`) in the vertical plane. Without it the pitch attitude is neutral (a
     zero root, left out): the vehicle keeps whatever attitude a disturbance leaves."""
-    if not (np.isfinite(hydrostatic_moment_prime) and hydrostatic_moment_prime >= 0):
-        raise ConfigurationError(f"the hydrostatic moment h' must be zero or positive, not {hydrostatic_moment_prime}")
     stiffness, inertia = _state_matrices(derivatives, acceleration, plane, mass, hydrostatic_moment_prime)
     roots = np.linalg.eigvals(np.linalg.solve(inertia, stiffness))
     roots = tuple(sorted((complex(r) for r in roots), key=lambda r: (r.real, r.imag), reverse=True))
