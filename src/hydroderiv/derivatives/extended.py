@@ -29,10 +29,9 @@ from pathlib import Path
 import numpy as np
 
 from ..case import Condition
-from ..case.conditions import SWEEP_KEYS
 from .fit import EvenFit, least_squares
-from .table import (DEFINITIONS, fit_sweeps, fitted_range, motion_variable, straight_loads, sweep_points, table_rows,
-                    write_csv)
+from .table import (DEFINITIONS, fit_sweeps, fitted_range, motion_variable, records_varying_only, straight_loads,
+                    sweep_points, table_rows, write_csv)
 
 # term -> (sweep, coefficient): loads even in the sweep's motion variable
 EVEN_TERMS = {
@@ -139,9 +138,8 @@ def interaction_terms(results: list[dict]) -> list[ExtendedTerm]:
 
     fitted by least squares with the term's form (v'r' for X', Z', M'; |v'|r' and v'|r'| together for Y',
     K' and N', which need conditions with both relative signs of b and r'). None without such conditions."""
-    others = [k for k in SWEEP_KEYS if k not in ("drift_deg", "yaw_rate_prime")]
-    loads = {(r["condition"]["drift_deg"], r["condition"]["yaw_rate_prime"]): r for r in results
-             if all(r["condition"].get(k, 0) == 0 for k in others)}
+    loads = {(r["condition"]["drift_deg"], r["condition"]["yaw_rate_prime"]): r
+             for r in records_varying_only(results, ("drift_deg", "yaw_rate_prime"))}
     straight = loads.get((0, 0))
     combined = [key for key in loads if key[0] and key[1] and (key[0], 0) in loads and (0, key[1]) in loads]
     if straight is None or not combined:

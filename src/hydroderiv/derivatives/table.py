@@ -58,11 +58,17 @@ def _on_sweep(condition: Condition, sweep: str) -> bool:
     return all(getattr(condition, k) == 0 for k in SWEEP_KEYS if k != sweep)
 
 
+def records_varying_only(results: list[dict], sweeps: tuple[str, ...]) -> list[dict]:
+    """The condition records whose every sweep variable but ``sweeps`` is zero (the records' counterpart of
+    ``_on_sweep``; a key a record predates counts as zero)."""
+    return [record for record in results
+            if all(record["condition"].get(k, 0) == 0 for k in SWEEP_KEYS if k not in sweeps)]
+
+
 def straight_loads(results: list[dict]) -> dict[str, float] | None:
     """The straight run's coefficients among condition records (every sweep variable zero); None if the
     records have none."""
-    return next((record["coefficients"] for record in results
-                 if all(record["condition"].get(k, 0) == 0 for k in SWEEP_KEYS)), None)
+    return next((record["coefficients"] for record in records_varying_only(results, ())), None)
 
 
 def sweep_points(results: list[dict], sweep: str, coefficient: str) -> tuple[np.ndarray, ...]:
