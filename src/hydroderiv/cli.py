@@ -497,8 +497,6 @@ def _stability(args: argparse.Namespace) -> int:
                               f"{', '.join(values) or 'none of them'}")
     body_key, mass, acceleration = _table_vehicle(path, table, args)
     speed = _hydrostatics_speed(path, table, args, has_vertical=all(k in values for k in PLANES["vertical"]))
-    if args.bg_m and (acceleration is None or mass.iy_prime is None):
-        raise HydroderivError("--bg-m needs the vertical plane's motion: the acceleration derivatives and I'y")
     report = _stability_report(values, stderr, mass, body_key, acceleration, args.bg_m, speed)
     if args.out:
         atomic_write_text(Path(args.out), json.dumps({"table": str(path), **report}, indent=2) + "\n")

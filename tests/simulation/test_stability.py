@@ -340,6 +340,12 @@ def test_aff8s_table_of_record_is_held_in_pitch_only_at_low_speed():
     assert "stable_speeds" not in report["horizontal"]["computed"]
     with pytest.raises(ConfigurationError, match="needs the speed"):
         stability_report(table, {}, mass, None, acceleration, bg_m=0.02)
+    # never dropped in silence: without the vertical plane's motion there are no roots for z_BG to act in
+    with pytest.raises(ConfigurationError, match="needs the vertical plane's motion"):
+        stability_report(table, {}, mass, None, None, bg_m=0.02, speed_m_s=speed)
+    without_pitch_inertia = MassProperties(mass.mass_prime, mass.xg_prime, "no I'y", mass.iz_prime)
+    with pytest.raises(ConfigurationError, match="needs the vertical plane's motion"):
+        stability_report(table, {}, without_pitch_inertia, None, acceleration, bg_m=0.02, speed_m_s=speed)
     with pytest.raises(ConfigurationError, match="below the centre of buoyancy"):
         vertical_stable_speeds(table, acceleration, mass, 0.0)
     with pytest.raises(ConfigurationError, match="capsizes"):

@@ -362,14 +362,22 @@ def stability_report(values: Mapping[str, float], stderr: Mapping[str, float], m
     ``speed_m_s`` and ``stable_speeds`` gives the speeds at which it is stable (:class:`StableSpeeds`)."""
     computed = stability(values, mass, stderr)
     measured = stability(reference or {}, mass)
+
+    def has_motion(plane: str) -> bool:
+        inertia = mass.iz_prime if plane == "horizontal" else mass.iy_prime
+        return acceleration is not None and inertia is not None and all(k in acceleration for k in ACCELERATION[plane])
+
     if bg_m and speed_m_s is None:
         raise ConfigurationError("the hydrostatic moment needs the speed: it fades as 1/U^2")
+    if bg_m and not ("vertical" in computed and has_motion("vertical")):
+        # said here rather than dropped: z_BG acts only through the vertical plane's roots
+        raise ConfigurationError("the hydrostatic moment needs the vertical plane's motion: its four derivatives, "
+                                 "the acceleration derivatives and I'y")
     hydrostatic = hydrostatic_moment_prime(mass, bg_m, speed_m_s) if bg_m else 0.0
 
     def entry(result: PlaneStability, derivatives: Mapping[str, float]) -> dict:
         plane = result.plane
-        inertia = mass.iz_prime if plane == "horizontal" else mass.iy_prime
-        if acceleration is None or inertia is None or not all(k in acceleration for k in ACCELERATION[plane]):
+        if not has_motion(plane):
             return result.as_dict()
         moment = hydrostatic if plane == "vertical" else 0.0  # the hydrostatic moment acts in pitch only
         record = {**result.as_dict(), "motion": plane_motion(derivatives, acceleration, plane, mass, moment).as_dict()}
