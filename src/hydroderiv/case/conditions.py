@@ -32,8 +32,11 @@ from ..errors import ConfigurationError
 
 KNOT = 1852.0 / 3600.0  # m/s
 
-# The condition variables a study can sweep, one at a time about straight-ahead.
-SWEEP_KEYS = ("drift_deg", "pitch_deg", "yaw_rate_prime", "pitch_rate_prime", "roll_rate_prime")
+# The condition variables a study can sweep, one at a time about straight-ahead, each with its motion variable
+# as the derivatives' names write it (Y'v, Z'w, N'r, M'q, K'p).
+SWEEP_VARIABLES = {"drift_deg": "v", "pitch_deg": "w", "yaw_rate_prime": "r", "pitch_rate_prime": "q",
+                   "roll_rate_prime": "p"}
+SWEEP_KEYS = tuple(SWEEP_VARIABLES)
 
 MAX_INCIDENCE_DEG = 30.0  # the far field accepts any inflow direction; beyond this the wake leaves its refinement
 MAX_RATE_PRIME = 1.0  # r' = L/R0 = 1 puts the turn centre one body length away, beyond any rotating-arm test

@@ -284,14 +284,18 @@ def acceleration_derivatives(body: Body, n_stations: int = 160,
     translation = lamb["k2"]  # strip theory gives a spheroid exactly its displaced mass across it
     rotation = float(lamb["k_rotation"] * (1.0 + (semi_minor / semi_major) ** 2))
     correction = (translation, float(np.sqrt(translation * rotation)), rotation)
+
+    def prime(column: int, moment: int) -> float:
+        """A column's k-th moment along x in prime units: over 0.5 L^(1 + its sections' power + k), so Y_v.
+        over L^3, N_r. and K_p. over L^5, K_v. over L^4."""
+        return float(moments[moment, column] / (0.5 * length ** (1 + _SECTION_LENGTH_POWER[column] + moment)))
+
     strip, values = {}, {}
     for name, (plane, moment, sign) in STRIP_TERMS.items():
-        column = 0 if plane == "horizontal" else 1
-        strip[name] = float(sign * moments[moment, column] / (0.5 * length ** (3 + moment)))
+        strip[name] = sign * prime(0 if plane == "horizontal" else 1, moment)
         values[name] = strip[name] * correction[moment]
     for name, (column, moment) in ROLL_TERMS.items():
-        power = 1 + _SECTION_LENGTH_POWER[column] + moment  # K_p. and K_r. over L^5, K_v. over L^4
-        strip[name] = values[name] = float(-moments[moment, column] / (0.5 * length**power))
+        strip[name] = values[name] = -prime(column, moment)
     axial = panel_added_mass(equivalent_body_of_revolution(surface))[0, 0]
     values = {"Xudot": float(-axial / (0.5 * length**3)), **values}
     factors = {**lamb, "translation": correction[0], "coupling": correction[1], "rotation": correction[2],

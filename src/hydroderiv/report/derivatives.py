@@ -7,11 +7,10 @@ from pathlib import Path
 
 import numpy as np
 
+from ..case.conditions import SWEEP_VARIABLES
 from ..derivatives.table import DEFINITIONS, SweepFit
 from ._figures import pyplot, save_figure
 
-_AXIS_LABELS = {"drift_deg": "v'", "pitch_deg": "w'", "yaw_rate_prime": "r'", "pitch_rate_prime": "q'",
-                "roll_rate_prime": "p'"}
 
 
 def plot_fits(fits: dict[str, SweepFit], path: str | Path, title: str, reference: dict[str, float] | None = None) -> Path:
@@ -35,7 +34,7 @@ def plot_fits(fits: dict[str, SweepFit], path: str | Path, title: str, reference
         ax.plot(x, f.fit.predict(x), "-", label=f"fit, {name}' = {f.fit.slope_:+.5f}")
         if reference and name in reference:
             ax.plot(x, f.fit.offset_ + reference[name] * x, "k--", lw=1, label=f"experiment {reference[name]:+.5f}")
-        ax.set_xlabel(_AXIS_LABELS[sweep])
+        ax.set_xlabel(f"{SWEEP_VARIABLES[sweep]}'")
         ax.set_ylabel(f"{coefficient}'")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7)

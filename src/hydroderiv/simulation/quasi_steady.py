@@ -28,22 +28,21 @@ from typing import Mapping
 import numpy as np
 
 from ..case import Condition
+from ..case.conditions import SWEEP_VARIABLES
 from ..derivatives.extended import EVEN_TERMS, INTERACTION_TERMS, ROLL_DEFINITIONS, STRAIGHT_TERMS
 from ..derivatives.fit import NONLINEAR_TERMS
 from ..derivatives.table import DEFINITIONS, motion_variable, straight_loads
 from ..errors import HydroderivError
 
-_VARIABLE = {"drift_deg": "v", "pitch_deg": "w", "yaw_rate_prime": "r", "pitch_rate_prime": "q",
-             "roll_rate_prime": "p"}
 # coefficient -> the straight run's term; (term, motion variable) of the fitted odd terms (main table and
 # roll); (term, form) of the even ("vv", ...) and interaction terms: all from the derivatives' definitions
 _STRAIGHT = {coefficient: name for name, coefficient in STRAIGHT_TERMS.items()}
 _ODD: dict[str, list[tuple[str, str]]] = {}
 for _name, (_sweep, _coefficient, _) in {**DEFINITIONS, **ROLL_DEFINITIONS}.items():
-    _ODD.setdefault(_coefficient, []).append((_name, _VARIABLE[_sweep]))
+    _ODD.setdefault(_coefficient, []).append((_name, SWEEP_VARIABLES[_sweep]))
 _FORMS: dict[str, list[tuple[str, str]]] = {coefficient: [] for coefficient in _STRAIGHT}
 for _name, (_sweep, _coefficient) in EVEN_TERMS.items():
-    _FORMS[_coefficient].append((_name, 2 * _VARIABLE[_sweep]))
+    _FORMS[_coefficient].append((_name, 2 * SWEEP_VARIABLES[_sweep]))
 for _name, (_coefficient, _form) in INTERACTION_TERMS.items():
     _FORMS[_coefficient].append((_name, _form))
 
