@@ -15,7 +15,7 @@ import json
 import sys
 from pathlib import Path
 
-_LOADS = ("X", "Y", "Z", "K", "M", "N")
+from hydroderiv.forces.coefficients import COEFFICIENT_NAMES
 
 
 def _conditions(table: dict) -> dict[str, dict]:
@@ -44,7 +44,7 @@ def main(argv: list[str] | None = None) -> int:
     for name in shared:
         new, reference = new_conditions[name], reference_conditions[name]
         changes = []
-        for load in _LOADS:
+        for load in COEFFICIENT_NAMES:
             value = reference["coefficients"].get(load)
             if value is not None and abs(value) >= args.min_load:
                 change = _change_percent(new["coefficients"][load], value)
