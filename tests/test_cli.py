@@ -87,6 +87,8 @@ def test_a_committed_table_is_refitted_from_the_forces_it_carries(tmp_path, caps
     for name in ("Yv", "Nv", "Zw", "Mw", "Yr", "Nr", "Zq", "Mq"):
         assert refit[name] == pytest.approx(committed[name], rel=1e-12)
     assert refit["meta"]["turbulence_model"] == "SpalartAllmaras" and refit["meta"]["method"] == "hybrid"
+    # the split into ideal-fluid and viscous parts, printed and written with the table
+    assert refit["ideal_fluid"]["quasi_steady_ratio"] == pytest.approx(committed["ideal_fluid"]["quasi_steady_ratio"], rel=1e-12)
     side_force = {c["condition"]["drift_deg"]: c["coefficients"]["Y"] for c in committed["conditions"]
                   if c["condition"]["pitch_deg"] == 0 and c["condition"]["yaw_rate_prime"] == 0}
     b = math.radians(4)

@@ -291,15 +291,17 @@ def _derivatives(args: argparse.Namespace) -> int:
                               xuu_reference=_xuu_from_resistance(study, vehicle))
     _print_extended(extended)
     acceleration = _print_acceleration(vehicle)
+    reference = DERIVATIVES.get(study.body or "", {}).get("values")
+    split = _print_viscous_split({row.name: row.value for row in rows}, acceleration.values, reference)
     stability = _print_stability(study, rows, vehicle, acceleration)
     out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": body,
             **study.solver.record(), "method": study.method, "conditions": len(results),
             "fit": {"nonlinear": study.nonlinear, "offset": study.fit_offset,
                     **({} if study.max_angle_deg is None else {"max_angle_deg": study.max_angle_deg})}}
-    paths = write_table(rows, out, meta, results, stability, by_part, extended_payload(extended), acceleration.as_dict())
+    paths = write_table(rows, out, meta, results, stability, by_part, extended_payload(extended), acceleration.as_dict(),
+                        split)
     extended_csv = write_extended_csv(extended, out.with_name(f"{out.stem}-extended.csv"))
-    reference = DERIVATIVES.get(study.body or "", {}).get("values")
     plot = plot_fits(fits, out.with_suffix(".png"), f"{body}, {study.level} mesh, {setup}", reference)
     console.print(f"written: {paths[0]}, {paths[1]}, {extended_csv}, {plot}")
     return 0
@@ -335,6 +337,30 @@ def _print_acceleration(body):
         table.add_row(name, f"{value:+.6f}", "-" if strip is None else f"{strip:+.6f}")
     console.print(table)
     return estimate
+
+
+def _print_viscous_split(values: dict[str, float], acceleration: dict[str, float],
+                         reference: dict[str, float] | None) -> dict:
+    """Print each derivative split into its ideal-fluid part (from the added mass) and the viscous rest,
+    beside the experiment's viscous part, and the quasi-steady ratios (derivatives/ideal_fluid.py); return
+    the split for the table's JSON."""
+    from .derivatives.ideal_fluid import quasi_steady_ratios, viscous_split, viscous_split_payload
+
+    rows = viscous_split(values, acceleration, reference)
+    table = Table(title="ideal-fluid part (potential flow, from the added mass) and viscous part of each derivative")
+    for column in ("derivative", "value", "ideal fluid", "viscous", "experiment's viscous", "viscous error (%)"):
+        table.add_column(column, justify="right")
+    for row in rows:
+        table.add_row(row.name, f"{row.value:+.5f}", f"{row.ideal:+.5f}", f"{row.viscous:+.5f}",
+                      "-" if row.reference_viscous is None else f"{row.reference_viscous:+.5f}",
+                      "-" if row.viscous_error_pct is None else f"{row.viscous_error_pct:+.1f}")
+    console.print(table)
+    computed, measured = quasi_steady_ratios(rows), quasi_steady_ratios(rows, measured=True)
+    if computed:
+        console.print("a turn's viscous force over the static viscous moment (1 in quasi-steady strip theory): "
+                      + ", ".join(f"{k} {v:.3f}" + (f" (experiment {measured[k]:.3f})" if k in measured else "")
+                                  for k, v in computed.items()))
+    return viscous_split_payload(rows)
 
 
 def _print_extended(terms) -> None:

@@ -270,13 +270,15 @@ def condition_summary(record: dict) -> dict:
 
 def write_table(rows: list[DerivativeRow], json_path: str | Path, meta: dict, results: list[dict] = (),
                 stability: dict | None = None, by_part: dict[str, dict[str, float]] | None = None,
-                extended: dict | None = None, acceleration: dict | None = None) -> tuple[Path, Path]:
+                extended: dict | None = None, acceleration: dict | None = None,
+                ideal_fluid: dict | None = None) -> tuple[Path, Path]:
     """JSON (keys Yv, Nv, ... in prime units, plus details, the conditions' coefficients when ``results``
     are given, the straight-line ``stability`` the derivatives imply, see :mod:`hydroderiv.simulation`,
     each body part's contribution ``by_part``, see :func:`derivatives_by_part`, the rest of the steady
     table ``extended``, see :func:`hydroderiv.derivatives.extended.extended_payload`, and the acceleration
-    derivatives estimated from the shape, ``acceleration``, see :mod:`hydroderiv.derivatives.added_mass`)
-    and CSV beside it, both atomic."""
+    derivatives estimated from the shape, ``acceleration``, see :mod:`hydroderiv.derivatives.added_mass`,
+    and each derivative split into its ideal-fluid and viscous parts, ``ideal_fluid``, see
+    :mod:`hydroderiv.derivatives.ideal_fluid`) and CSV beside it, both atomic."""
     json_path = Path(json_path)
     payload = {row.name: row.value for row in rows}
     # NaN (no spare points, or records without a window deviation) is written as null: JSON has no NaN
@@ -292,6 +294,8 @@ def write_table(rows: list[DerivativeRow], json_path: str | Path, meta: dict, re
         payload["extended"] = extended
     if acceleration:
         payload["acceleration"] = acceleration
+    if ideal_fluid:
+        payload["ideal_fluid"] = ideal_fluid
     if results:
         payload["conditions"] = [condition_summary(r) for r in results]
     atomic_write_text(json_path, json.dumps(payload, indent=2) + "\n")
