@@ -1,0 +1,50 @@
+"""scripts/continue_condition.py: the schemes a continued copy runs on with another non-orthogonal
+correction limit."""
+
+import importlib.util
+from pathlib import Path
+
+import pytest
+from foamlib import FoamFile
+
+from hydroderiv.case.numerics import write_numerics
+from hydroderiv.errors import HydroderivError
+
+_SCRIPT = Path(__file__).resolve().parents[1] / "scripts" / "continue_condition.py"
+
+
+def _module():
+    spec = importlib.util.spec_from_file_location("continue_condition", _SCRIPT)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+@pytest.fixture
+def schemes(tmp_path) -> Path:
+    (tmp_path / "system").mkdir()
+    write_numerics(tmp_path)
+    return tmp_path / "system/fvSchemes"
+
+
+@pytest.mark.parametrize("limit, written", [(1.0, "corrected"), (0.5, "limited corrected 0.5")])
+def test_the_laplacian_and_sngrad_schemes_get_the_new_limit_and_nothing_else_changes(schemes, limit, written):
+    text = schemes.read_text()
+    changed = _module().with_non_orthogonal_correction(text, limit)
+    schemes.write_text(changed)
+    entries = FoamFile(schemes)
+    words = lambda entry: " ".join(str(w) for w in entry) if not isinstance(entry, str) else entry
+    assert words(entries["laplacianSchemes"]["default"]) == f"Gauss linear {written}"
+    assert words(entries["snGradSchemes"]["default"]) == written
+    # every other line as the set-up wrote it
+    assert [a for a, b in zip(text.splitlines(), changed.splitlines()) if a != b] == [
+        line for line in text.splitlines() if "limited corrected 0.33" in line]
+
+
+def test_a_limit_out_of_range_or_a_case_already_changed_is_named(schemes):
+    module = _module()
+    with pytest.raises(HydroderivError, match=r"must be in \(0, 1\]"):
+        module.with_non_orthogonal_correction(schemes.read_text(), 1.5)
+    changed = module.with_non_orthogonal_correction(schemes.read_text(), 1.0)
+    with pytest.raises(HydroderivError, match="already changed"):
+        module.with_non_orthogonal_correction(changed, 0.5)
