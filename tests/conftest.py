@@ -1,4 +1,6 @@
+import importlib.util
 import shutil
+from pathlib import Path
 
 import pytest
 
@@ -62,3 +64,17 @@ def coarse_bare_hull(tmp_path_factory, suboff, openfoam):
     case = tmp_path_factory.mktemp("mesh") / "AFF-1-coarse"
     report = build_mesh(suboff("AFF-1"), "coarse", case, log=lambda message: None, n_procs=2)
     return case, report
+
+
+@pytest.fixture(scope="session")
+def load_script():
+    """Loader of a script under scripts/ as a module (the scripts are not a package): load("compare_tables")."""
+
+    def load(name: str):
+        path = Path(__file__).resolve().parents[1] / "scripts" / f"{name}.py"
+        spec = importlib.util.spec_from_file_location(name, path)
+        module = importlib.util.module_from_spec(spec)
+        spec.loader.exec_module(module)
+        return module
+
+    return load

@@ -1,17 +1,7 @@
 """scripts/compare_tables.py: a rerun's loads and derivatives against the table it checks."""
 
-import importlib.util
 import json
 from pathlib import Path
-
-_SCRIPT = Path(__file__).resolve().parents[1] / "scripts" / "compare_tables.py"
-
-
-def _module():
-    spec = importlib.util.spec_from_file_location("compare_tables", _SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 def _table(path: Path, side_force: float, iterations: int, yv: float) -> Path:
@@ -21,10 +11,10 @@ def _table(path: Path, side_force: float, iterations: int, yv: float) -> Path:
     return path
 
 
-def test_changes_are_relative_to_the_reference_and_small_loads_are_left_out(tmp_path, capsys):
+def test_changes_are_relative_to_the_reference_and_small_loads_are_left_out(tmp_path, capsys, load_script):
     new = _table(tmp_path / "new.json", side_force=2.02e-3, iterations=321, yv=-0.0255)
     reference = _table(tmp_path / "reference.json", side_force=2.0e-3, iterations=271, yv=-0.0250)
-    assert _module().main([str(new), str(reference)]) == 0
+    assert load_script("compare_tables").main([str(new), str(reference)]) == 0
     out = capsys.readouterr().out
     assert "321/271" in out
     assert "Y' +1.00" in out and "X' +0.00" in out
@@ -33,9 +23,9 @@ def test_changes_are_relative_to_the_reference_and_small_loads_are_left_out(tmp_
     assert "-2.00 %" in out  # Y'v 2 % larger in magnitude, signed as the value moved
 
 
-def test_tables_without_shared_conditions_are_refused(tmp_path, capsys):
+def test_tables_without_shared_conditions_are_refused(tmp_path, capsys, load_script):
     new = _table(tmp_path / "new.json", 2e-3, 300, -0.025)
     reference = tmp_path / "reference.json"
     reference.write_text(json.dumps({"conditions": [{"name": "other", "coefficients": {}}]}))
-    assert _module().main([str(new), str(reference)]) == 1
+    assert load_script("compare_tables").main([str(new), str(reference)]) == 1
     assert "no condition" in capsys.readouterr().err

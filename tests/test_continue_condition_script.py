@@ -1,7 +1,6 @@
 """scripts/continue_condition.py: the schemes a continued copy runs on with another non-orthogonal
 correction limit."""
 
-import importlib.util
 from pathlib import Path
 
 import pytest
@@ -9,15 +8,6 @@ from foamlib import FoamFile
 
 from hydroderiv.case.numerics import write_numerics
 from hydroderiv.errors import HydroderivError
-
-_SCRIPT = Path(__file__).resolve().parents[1] / "scripts" / "continue_condition.py"
-
-
-def _module():
-    spec = importlib.util.spec_from_file_location("continue_condition", _SCRIPT)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
 
 
 @pytest.fixture
@@ -28,9 +18,10 @@ def schemes(tmp_path) -> Path:
 
 
 @pytest.mark.parametrize("limit, written", [(1.0, "corrected"), (0.5, "limited corrected 0.5")])
-def test_the_laplacian_and_sngrad_schemes_get_the_new_limit_and_nothing_else_changes(schemes, limit, written):
+def test_the_laplacian_and_sngrad_schemes_get_the_new_limit_and_nothing_else_changes(schemes, limit, written,
+                                                                                    load_script):
     text = schemes.read_text()
-    changed = _module().with_non_orthogonal_correction(text, limit)
+    changed = load_script("continue_condition").with_non_orthogonal_correction(text, limit)
     schemes.write_text(changed)
     entries = FoamFile(schemes)
     words = lambda entry: " ".join(str(w) for w in entry) if not isinstance(entry, str) else entry
@@ -41,8 +32,8 @@ def test_the_laplacian_and_sngrad_schemes_get_the_new_limit_and_nothing_else_cha
         line for line in text.splitlines() if "limited corrected 0.33" in line]
 
 
-def test_a_limit_out_of_range_or_a_case_already_changed_is_named(schemes):
-    module = _module()
+def test_a_limit_out_of_range_or_a_case_already_changed_is_named(schemes, load_script):
+    module = load_script("continue_condition")
     with pytest.raises(HydroderivError, match=r"must be in \(0, 1\]"):
         module.with_non_orthogonal_correction(schemes.read_text(), 1.5)
     changed = module.with_non_orthogonal_correction(schemes.read_text(), 1.0)
