@@ -15,15 +15,12 @@ import json
 import sys
 from pathlib import Path
 
+from hydroderiv.experiments import error_percent
 from hydroderiv.forces.coefficients import COEFFICIENT_NAMES
 
 
 def _conditions(table: dict) -> dict[str, dict]:
     return {record["name"]: record for record in table.get("conditions", [])}
-
-
-def _change_percent(new: float, reference: float) -> float:
-    return 100.0 * (new - reference) / abs(reference)
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -47,7 +44,7 @@ def main(argv: list[str] | None = None) -> int:
         for load in COEFFICIENT_NAMES:
             value = reference["coefficients"].get(load)
             if value is not None and abs(value) >= args.min_load:
-                change = _change_percent(new["coefficients"][load], value)
+                change = error_percent(new["coefficients"][load], value)
                 largest = max(largest, abs(change))
                 changes.append(f"{load}' {change:+.2f}")
         iterations = f"{new.get('iterations', '?')}/{reference.get('iterations', '?')}"
@@ -59,7 +56,7 @@ def main(argv: list[str] | None = None) -> int:
         print("derivative  new           reference     change")
         for key in names:
             new, reference = new_table[key], reference_table[key]
-            print(f"{key:10s}  {new:+.6f}    {reference:+.6f}    {_change_percent(new, reference):+.2f} %")
+            print(f"{key:10s}  {new:+.6f}    {reference:+.6f}    {error_percent(new, reference):+.2f} %")
     return 0
 
 

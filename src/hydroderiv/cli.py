@@ -285,14 +285,15 @@ def _derivatives(args: argparse.Namespace) -> int:
                       "-" if row.experimental_uncertainty_pct is None else f"{row.experimental_uncertainty_pct:.0f}")
     console.print(table)
     by_part = derivatives_by_part(fit_parts(results, study.nonlinear, study.fit_offset, study.max_angle_deg))
-    _print_by_part(by_part, {row.name: row.value for row in rows})
+    values = {row.name: row.value for row in rows}
+    _print_by_part(by_part, values)
     vehicle = study.workspace.body(study.body, study.body_dir, write=False)
     extended = extended_terms(results, study.nonlinear, study.fit_offset, study.max_angle_deg,
                               xuu_reference=_xuu_from_resistance(study, vehicle))
     _print_extended(extended)
     acceleration = _print_acceleration(vehicle)
     reference = DERIVATIVES.get(study.body or "", {}).get("values")
-    split = _print_viscous_split({row.name: row.value for row in rows}, acceleration.values, reference)
+    split = _print_viscous_split(values, acceleration.values, reference)
     stability = _print_stability(study, rows, vehicle, acceleration)
     out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": body,
@@ -344,7 +345,7 @@ def _print_viscous_split(values: dict[str, float], acceleration: dict[str, float
     """Print each derivative split into its ideal-fluid part (from the added mass) and the viscous rest,
     beside the experiment's viscous part, and the quasi-steady ratios (derivatives/ideal_fluid.py); return
     the split for the table's JSON."""
-    from .derivatives.ideal_fluid import quasi_steady_ratios, viscous_split, viscous_split_payload
+    from .derivatives.ideal_fluid import viscous_split, viscous_split_payload
 
     rows = viscous_split(values, acceleration, reference)
     table = Table(title="ideal-fluid part (potential flow, from the added mass) and viscous part of each derivative")
@@ -355,12 +356,13 @@ def _print_viscous_split(values: dict[str, float], acceleration: dict[str, float
                       "-" if row.reference_viscous is None else f"{row.reference_viscous:+.5f}",
                       "-" if row.viscous_error_pct is None else f"{row.viscous_error_pct:+.1f}")
     console.print(table)
-    computed, measured = quasi_steady_ratios(rows), quasi_steady_ratios(rows, measured=True)
+    split = viscous_split_payload(rows)
+    computed, measured = split["quasi_steady_ratio"], split.get("quasi_steady_ratio_measured", {})
     if computed:
         console.print("a turn's viscous force over the static viscous moment (1 in quasi-steady strip theory): "
                       + ", ".join(f"{k} {v:.3f}" + (f" (experiment {measured[k]:.3f})" if k in measured else "")
                                   for k, v in computed.items()))
-    return viscous_split_payload(rows)
+    return split
 
 
 def _print_extended(terms) -> None:

@@ -44,6 +44,13 @@ DERIVATIVES = {
 DERIVATIVE_UNCERTAINTY = {"static": 0.05, "rotary": 0.10}
 
 
+def error_percent(computed: float, measured: float | None) -> float | None:
+    """The error of a computed value against a measured one, (computed - measured) / |measured| in per cent:
+    positive where the computation lies above the measurement, whatever its sign. None without a
+    measured value (None or zero)."""
+    return 100.0 * (computed - measured) / abs(measured) if measured else None
+
+
 def resistance_at(config: str, speed_knots: float) -> float | None:
     """The measured resistance at this speed (within 0.02 kn), or None."""
     for knots, newtons in RESISTANCE.get(config.upper(), {}).get("points", []):

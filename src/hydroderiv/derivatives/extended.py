@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 
 from ..case import Condition
+from ..experiments import error_percent
 from .fit import EvenFit, least_squares
 from .table import (DEFINITIONS, fit_sweeps, fitted_range, motion_variable, records_varying_only, straight_loads,
                     sweep_points, table_rows, write_csv)
@@ -107,7 +108,7 @@ def extended_terms(results: list[dict], nonlinear: str = "abs", fit_offset: bool
             reference = xuu_reference if name == "Xuu" else None
             value = float(straight[coefficient])
             terms.append(ExtendedTerm(name, value, "straight", 1, reference=reference,
-                                      error_pct=None if not reference else 100.0 * (value - reference) / abs(reference)))
+                                      error_pct=error_percent(value, reference)))
     for name, (sweep, coefficient) in EVEN_TERMS.items():
         xs, us, ys, _, values = sweep_points(results, sweep, coefficient)
         inside = fitted_range(values, _KIND_OF_SWEEP[sweep], max_angle_deg)

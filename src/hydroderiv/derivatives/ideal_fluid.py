@@ -29,31 +29,34 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
-# velocity derivative -> its ideal-fluid value from the acceleration derivatives (prime units)
+from ..experiments import error_percent
+
+# velocity derivative -> its ideal-fluid value as a sum of acceleration derivatives times these factors
+# (prime units; no term: zero)
 IDEAL_FLUID = {
-    "Yv": lambda a: 0.0,
-    "Nv": lambda a: a["Yvdot"] - a["Xudot"],
-    "Yr": lambda a: a["Xudot"],
-    "Nr": lambda a: a["Yrdot"],
-    "Zw": lambda a: 0.0,
-    "Mw": lambda a: -(a["Zwdot"] - a["Xudot"]),
-    "Zq": lambda a: -a["Xudot"],
-    "Mq": lambda a: -a["Zqdot"],
+    "Yv": {},
+    "Nv": {"Yvdot": 1.0, "Xudot": -1.0},
+    "Yr": {"Xudot": 1.0},
+    "Nr": {"Yrdot": 1.0},
+    "Zw": {},
+    "Mw": {"Zwdot": -1.0, "Xudot": 1.0},
+    "Zq": {"Xudot": -1.0},
+    "Mq": {"Zqdot": -1.0},
 }
 
 # (turn's force, drift's or pitch's moment): equal viscous parts in quasi-steady strip theory
 QUASI_STEADY_PAIRS = {"Yr/Nv": ("Yr", "Nv"), "Zq/Mw": ("Zq", "Mw")}
 
-_NEEDED = ("Xudot", "Yvdot", "Yrdot", "Zwdot", "Zqdot")
-
 
 def ideal_fluid_derivatives(acceleration: Mapping[str, float]) -> dict[str, float]:
     """The velocity derivatives of the potential flow about the body, from its acceleration derivatives
     (prime units, keys as :class:`~hydroderiv.derivatives.added_mass.AccelerationDerivatives` ``values``)."""
-    missing = [k for k in _NEEDED if not isinstance(acceleration.get(k), (int, float))]
+    needed = sorted({key for terms in IDEAL_FLUID.values() for key in terms})
+    missing = [k for k in needed if not isinstance(acceleration.get(k), (int, float))]
     if missing:
         raise KeyError(f"the ideal-fluid derivatives need the acceleration derivatives {', '.join(missing)}")
-    return {name: float(formula(acceleration)) for name, formula in IDEAL_FLUID.items()}
+    return {name: float(sum(factor * acceleration[key] for key, factor in terms.items()))
+            for name, terms in IDEAL_FLUID.items()}
 
 
 @dataclass(frozen=True)
@@ -83,8 +86,8 @@ def viscous_split(derivatives: Mapping[str, float], acceleration: Mapping[str, f
         viscous = value - ideal[name]
         measured = (reference or {}).get(name)
         measured_viscous = None if measured is None else measured - ideal[name]
-        error = (None if not measured_viscous else 100.0 * (viscous - measured_viscous) / abs(measured_viscous))
-        rows.append(ViscousSplit(name, float(value), ideal[name], float(viscous), measured_viscous, error))
+        rows.append(ViscousSplit(name, float(value), ideal[name], float(viscous), measured_viscous,
+                                 error_percent(viscous, measured_viscous)))
     return rows
 
 

@@ -28,7 +28,7 @@ from .._io import atomic_write_text
 from ..case import Condition
 from ..case.conditions import SWEEP_KEYS
 from ..errors import ConfigurationError
-from ..experiments import DERIVATIVES, DERIVATIVE_UNCERTAINTY
+from ..experiments import DERIVATIVE_UNCERTAINTY, DERIVATIVES, error_percent
 from ..forces import COEFFICIENT_NAMES
 from .fit import NONLINEAR_TERMS, DerivativeFit
 
@@ -205,7 +205,7 @@ def table_rows(fits: dict[str, SweepFit], reference_key: str | None = None) -> l
                 single_point_by_magnitude=by_magnitude,
                 n_points=fit.n_points_,
                 reference=ref,
-                error_pct=100.0 * (fit.slope_ - ref) / abs(ref) if ref else None,
+                error_pct=error_percent(fit.slope_, ref),
                 experimental_uncertainty_pct=None if ref is None else 100.0 * DERIVATIVE_UNCERTAINTY[kind],
                 nonlinear_term=fit.nonlinear,
                 spare_magnitudes=fit.spare_magnitudes_,
