@@ -48,6 +48,9 @@ def continue_condition(source: Path, extra: int, copy: Path, ranks: int,
     latest = latest_time_dir(source)
     if latest is None:
         raise HydroderivError(f"{source} has no saved solution to continue from")
+    schemes = None  # the new schemes, made (so checked) before an earlier copy is removed
+    if non_orthogonal_correction is not None:
+        schemes = with_non_orthogonal_correction((source / "system/fvSchemes").read_text(), non_orthogonal_correction)
     shutil.rmtree(copy, ignore_errors=True)
     copy.mkdir(parents=True)
     for folder in ("system", "constant"):
@@ -57,9 +60,8 @@ def continue_condition(source: Path, extra: int, copy: Path, ranks: int,
     control = FoamFile(copy / "system/controlDict")
     control["endTime"] = end
     control["writeInterval"] = end  # one write, at the end
-    if non_orthogonal_correction is not None:
-        schemes = copy / "system/fvSchemes"
-        schemes.write_text(with_non_orthogonal_correction(schemes.read_text(), non_orthogonal_correction))
+    if schemes is not None:
+        (copy / "system/fvSchemes").write_text(schemes)
     if ranks > 1:
         run_application(copy, ["decomposePar", "-latestTime"])
     run_application(copy, ["simpleFoam"], n_procs=ranks)

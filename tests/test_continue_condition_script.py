@@ -39,3 +39,16 @@ def test_a_limit_out_of_range_or_a_case_already_changed_is_named(schemes, load_s
     changed = module.with_non_orthogonal_correction(schemes.read_text(), 1.0)
     with pytest.raises(HydroderivError, match="already changed"):
         module.with_non_orthogonal_correction(changed, 0.5)
+
+
+def test_a_bad_limit_is_named_before_an_earlier_copy_is_removed(tmp_path, load_script):
+    source, copy = tmp_path / "condition", tmp_path / "copy"
+    (source / "system").mkdir(parents=True)
+    write_numerics(source)
+    (source / "262").mkdir()
+    (source / "262" / "U").write_text("")
+    copy.mkdir()
+    (copy / "log.simpleFoam").write_text("an earlier continuation")
+    with pytest.raises(HydroderivError, match=r"must be in \(0, 1\]"):
+        load_script("continue_condition").continue_condition(source, 400, copy, 2, non_orthogonal_correction=0.0)
+    assert (copy / "log.simpleFoam").read_text() == "an earlier continuation"
