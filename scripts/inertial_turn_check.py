@@ -44,6 +44,7 @@ from hydroderiv._io import atomic_write_text
 from hydroderiv.case.conditions import Condition
 from hydroderiv.case.setup import latest_time_dir
 from hydroderiv.errors import HydroderivError
+from hydroderiv.experiments import error_percent
 from hydroderiv.forces import COEFFICIENT_NAMES, PrimeScales, body_axis_loads, read_history
 from hydroderiv.run.condition import read_result
 from hydroderiv.run.openfoam import run_application
@@ -262,7 +263,7 @@ def main() -> None:
     for name in "XYN":
         settled = float(np.mean(history[name][last]))
         summary[name] = {"steady": steady[name], "transient_last_quarter_length": settled,
-                         "difference_percent": 100 * (settled - steady[name]) / abs(steady[name])}
+                         "difference_percent": error_percent(settled, steady[name])}  # against MRF's steady value
     for name, row in summary.items():
         print(f"{name}': steady {row['steady']:+.5e}, inertial (last 0.25 L of travel) "
               f"{row['transient_last_quarter_length']:+.5e}, {row['difference_percent']:+.2f} %")

@@ -180,13 +180,14 @@ def test_a_k_epsilon_model_gets_epsilon_from_the_same_free_stream_and_its_own_wa
     (mesh / "constant/polyMesh").mkdir(parents=True)
     condition, nu = Condition(speed=3.344), 0.001053 / 998.55
     cases = {}
-    for model in ("kOmegaSST", "ShihQuadraticKE"):
+    for model in ("kOmegaSST", "ShihQuadraticKE", "LienCubicKE"):
         settings = CaseSettings(length=4.261, components=("hull",), solver=SolverOptions(turbulence_model=model))
         cases[model] = write_condition_case(tmp_path / model, mesh, condition, settings)
         with FoamFile(cases[model] / "constant/turbulenceProperties") as f:
             assert f["RAS"]["RASModel"] == model
     assert (cases["kOmegaSST"] / "0/omega").is_file() and not (cases["kOmegaSST"] / "0/epsilon").exists()
-    assert (cases["ShihQuadraticKE"] / "0/epsilon").is_file() and not (cases["ShihQuadraticKE"] / "0/omega").exists()
+    for model in ("ShihQuadraticKE", "LienCubicKE"):
+        assert (cases[model] / "0/epsilon").is_file() and not (cases[model] / "0/omega").exists()
     with FoamFile(cases["ShihQuadraticKE"] / "0/epsilon") as f:
         free = FreestreamTurbulence()
         # the same free-stream turbulence, in the other variable: epsilon = C_mu k omega

@@ -61,9 +61,11 @@ class FreestreamTurbulence:
 # junction's corner attached, and SST separated the suction-side corners at the sail's and rudders' trailing
 # edges (issue-4 notes, 2026-11-30). Spalart-Allmaras (one equation, for the eddy viscosity itself) was
 # made for aerofoils in adverse pressure gradients: SST's boundary layers run back over the last tenth of
-# the thick NACA 0020 fins even straight ahead (issue-4 notes, 2026-12-02).
-TURBULENCE_MODELS = {"kOmegaSST": ("k", "omega"), "ShihQuadraticKE": ("k", "epsilon"), "realizableKE": ("k", "epsilon"),
-                     "SpalartAllmaras": ("nuTilda",)}
+# the thick NACA 0020 fins even straight ahead (issue-4 notes, 2026-12-02). Lien, Chen & Leschziner's cubic
+# k-epsilon adds stresses cubic in strain and rotation as well: the cubic terms are the ones that make an
+# eddy-viscosity model feel streamline curvature and swirl, which a turn adds to what the drift has.
+TURBULENCE_MODELS = {"kOmegaSST": ("k", "omega"), "ShihQuadraticKE": ("k", "epsilon"), "LienCubicKE": ("k", "epsilon"),
+                     "realizableKE": ("k", "epsilon"), "SpalartAllmaras": ("nuTilda",)}
 DEFAULT_TURBULENCE_MODEL = "kOmegaSST"
 C_MU = 0.09  # epsilon = C_mu k omega
 SA_CV1 = 7.1  # Spalart & Allmaras (1994), the constant of the wall-damping function fv1

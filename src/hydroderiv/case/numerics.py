@@ -178,7 +178,7 @@ def _write_schemes(case: Path, second_order: bool, limiters: GradientLimiters) -
             "divSchemes": {
                 "default": "none",
                 **_convection_schemes(second_order, limiters),
-                "div(nonlinearStress)": "Gauss linear",  # the quadratic stresses of ShihQuadraticKE
+                "div(nonlinearStress)": "Gauss linear",  # the nonlinear stresses of ShihQuadraticKE and LienCubicKE
                 "div((nuEff*dev2(T(grad(U)))))": "Gauss linear",
             },
             "laplacianSchemes": {"default": f"Gauss linear {NON_ORTHOGONAL_CORRECTION}"},

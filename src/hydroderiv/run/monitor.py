@@ -9,8 +9,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from ..errors import ConfigurationError
-
-COEFFICIENTS = ("X", "Y", "Z", "K", "M", "N")
+from ..forces.coefficients import COEFFICIENT_NAMES as COEFFICIENTS  # the order of a load record's six columns
 _TIME = re.compile(r"^Time = (\S+)", re.M)
 _RESIDUAL = re.compile(r"Solving for (\w+), Initial residual = ([^,]+),")
 

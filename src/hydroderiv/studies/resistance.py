@@ -11,7 +11,7 @@ import numpy as np
 from .._io import atomic_write_text
 from ..case import KNOT, Condition
 from ..case.setup import CaseSettings, latest_time_dir
-from ..experiments import RESISTANCE, resistance_at
+from ..experiments import RESISTANCE, error_percent, resistance_at
 from ..forces import PrimeScales, read_history
 from ..run.condition import run_condition
 from ..run.monitor import ConvergenceCriterion
@@ -74,7 +74,7 @@ def run_resistance(
             "vertical_force_N": round(record["force_N"][2], 4),
             "CT": -record["force_N"][0] / (scales.force / body.reference.length**2 * body.reference.wetted_area),
             "experiment_N": measured,
-            "error_pct": round(100.0 * (-record["force_N"][0] - measured) / measured, 2) if measured else None,
+            "error_pct": round(error_percent(-record["force_N"][0], measured), 2) if measured else None,
             "iterations": record["iterations"],
             "converged": record["converged"],
             "wall_seconds": record["wall_seconds"],

@@ -9,7 +9,7 @@ Example::
     n_procs = 2
     work = "runs/aff8-coarse" # optional; default: runs/<file stem>
     method = "hybrid"         # optional: "hybrid" (default) or "classic" (whole domain rotates, for verification)
-    turbulence_model = "kOmegaSST"  # optional: or "ShihQuadraticKE", "realizableKE", "SpalartAllmaras" (case/fluid.py)
+    turbulence_model = "kOmegaSST"  # optional: or "ShihQuadraticKE", "LienCubicKE", "realizableKE", "SpalartAllmaras" (case/fluid.py)
     limit_pressure_gradient = false  # optional: true, or "start" (case/numerics.py)
     limit_velocity_gradient = "everywhere"  # optional: or "convection", "nowhere" (case/numerics.py)
     velocity_limiter_coefficient = 1.0  # optional: k of that limiter, in (0, 1]; smaller limits less (case/numerics.py)
