@@ -293,7 +293,7 @@ def _derivatives(args: argparse.Namespace) -> int:
     _print_extended(extended)
     acceleration = _print_acceleration(vehicle)
     reference = DERIVATIVES.get(study.body or "", {}).get("values")
-    split = _print_viscous_split(values, acceleration.values, reference)
+    split = _print_viscous_split(values, acceleration.values, reference, by_part)
     stability = _print_stability(study, rows, vehicle, acceleration)
     out = Path(args.out) if getattr(args, "out", None) else study.work / "derivatives.json"
     meta = {"study": str(study.path), "level": study.level, "speed_m_s": study.speed, "body": body,
@@ -341,10 +341,10 @@ def _print_acceleration(body):
 
 
 def _print_viscous_split(values: dict[str, float], acceleration: dict[str, float],
-                         reference: dict[str, float] | None) -> dict:
+                         reference: dict[str, float] | None, by_part: dict[str, dict[str, float]] | None = None) -> dict:
     """Print each derivative split into its ideal-fluid part (from the added mass) and the viscous rest,
-    beside the experiment's viscous part, and the quasi-steady ratios (derivatives/ideal_fluid.py); return
-    the split for the table's JSON."""
+    beside the experiment's viscous part, and the quasi-steady ratios of the body and of each part in
+    ``by_part`` (derivatives/ideal_fluid.py); return the split for the table's JSON."""
     from .derivatives.ideal_fluid import viscous_split, viscous_split_payload
 
     rows = viscous_split(values, acceleration, reference)
@@ -356,12 +356,15 @@ def _print_viscous_split(values: dict[str, float], acceleration: dict[str, float
                       "-" if row.reference_viscous is None else f"{row.reference_viscous:+.5f}",
                       "-" if row.viscous_error_pct is None else f"{row.viscous_error_pct:+.1f}")
     console.print(table)
-    split = viscous_split_payload(rows)
+    split = viscous_split_payload(rows, by_part)
     computed, measured = split["quasi_steady_ratio"], split.get("quasi_steady_ratio_measured", {})
     if computed:
         console.print("a turn's viscous force over the static viscous moment (1 in quasi-steady strip theory): "
                       + ", ".join(f"{k} {v:.3f}" + (f" (experiment {measured[k]:.3f})" if k in measured else "")
                                   for k, v in computed.items()))
+    for label, parts in split.get("quasi_steady_ratio_by_part", {}).items():
+        console.print(f"  {label} by part (the hull less the ideal fluid): "
+                      + ", ".join(f"{part} {ratio:.3f}" for part, ratio in parts.items()))
     return split
 
 

@@ -11,6 +11,7 @@ import pytest
 from hydroderiv.derivatives.added_mass import acceleration_derivatives, spheroid_coefficients
 from hydroderiv.derivatives.ideal_fluid import (
     ideal_fluid_derivatives,
+    part_quasi_steady_ratios,
     quasi_steady_ratios,
     viscous_split,
     viscous_split_payload,
@@ -83,6 +84,35 @@ def test_the_viscous_part_of_a_quasi_steady_strip_loading_gives_turn_over_drift_
         assert ratios == {"Yr/Nv": pytest.approx(factor, rel=1e-9), "Zq/Mw": pytest.approx(factor, rel=1e-9)}
 
 
+def test_each_part_of_a_quasi_steady_body_has_a_ratio_of_one_and_an_edge_on_fin_none():
+    """A hull (its own strip of viscous lift plus the whole ideal fluid) and two fins (lift at their own
+    stations), every section loaded by its local incidence: per part, the hull less the ideal fluid, the
+    turn's viscous force equals the drift's viscous moment. A fin edge-on to the motion (no lift of its own,
+    a trace of moment) gets no ratio; a fin loaded 1.5 times in the turn gets 1.5, the others keep 1."""
+    acceleration = spheroid_acceleration(2.178, 0.2773, 4.261)
+    ideal = ideal_fluid_derivatives(acceleration)
+    x = np.linspace(-0.5, 0.5, 201)
+    hull = strip_loads(x, -0.02 * (1.0 + x), 1.0)
+    fin_x = np.array([-0.46, -0.44])  # the chord of a rudder, in L from the moment centre
+
+    def fin(turn_factor):
+        return strip_loads(fin_x, np.array([-0.05, -0.05]), turn_factor)
+
+    for top_factor in (1.0, 1.5):
+        parts = {"hull": {k: ideal[k] + v for k, v in hull.items()}, "top": fin(top_factor), "bottom": fin(1.0),
+                 "side": {k: 1e-4 * v for k, v in fin(1.0).items()}}
+        by_part = {name: {part: loads[name] for part, loads in parts.items()} for name in hull}
+        ratios = part_quasi_steady_ratios(by_part, ideal)
+        expected = {"hull": 1.0, "top": top_factor, "bottom": 1.0}
+        for label in ("Yr/Nv", "Zq/Mw"):
+            assert ratios[label] == {part: pytest.approx(value, rel=1e-9) for part, value in expected.items()}
+        # the payload carries them when it is given the parts, and only then
+        rows = viscous_split({name: sum(by_part[name].values()) for name in by_part}, acceleration)
+        payload = viscous_split_payload(rows, by_part)
+        assert payload["quasi_steady_ratio_by_part"] == ratios
+        assert "quasi_steady_ratio_by_part" not in viscous_split_payload(rows)
+
+
 def test_the_experiments_viscous_part_and_the_error_are_against_the_same_ideal_part():
     acceleration = spheroid_acceleration(2.178, 0.2773, 4.261)
     ideal = ideal_fluid_derivatives(acceleration)
@@ -112,6 +142,8 @@ def test_the_tables_of_record_carry_the_split_of_their_own_derivatives(config):
         for key, value in recorded["derivatives"][row.name].items():
             assert getattr(row, key) == (value if value is None else pytest.approx(value, rel=1e-12))
     assert recorded["quasi_steady_ratio"] == pytest.approx(quasi_steady_ratios(rows), rel=1e-12)
+    by_part = part_quasi_steady_ratios(table["by_part"], {row.name: row.ideal for row in rows})
+    assert recorded["quasi_steady_ratio_by_part"] == {label: pytest.approx(parts, rel=1e-12) for label, parts in by_part.items()}
     parts = {row.name: row for row in rows}
     assert parts["Nv"].ideal < parts["Nv"].value < 0 < parts["Nv"].viscous
     assert parts["Yr"].viscous > 0 and parts["Yv"].viscous < 0

@@ -100,11 +100,42 @@ def quasi_steady_ratios(rows: list[ViscousSplit], measured: bool = False) -> dic
             if parts.get(force) is not None and parts.get(moment)}
 
 
-def viscous_split_payload(rows: list[ViscousSplit]) -> dict:
-    """The split for a derivative table's JSON: per derivative its parts, then the quasi-steady ratios."""
+# A part whose drift (pitch) moment is below this fraction of the whole body's viscous one gets no ratio:
+# a fin edge-on to the motion carries next to nothing of either, and their ratio says nothing.
+PART_MOMENT_FLOOR = 0.05
+
+
+def part_quasi_steady_ratios(by_part: Mapping[str, Mapping[str, float]], ideal: Mapping[str, float],
+                             hull: str = "hull") -> dict[str, dict[str, float]]:
+    """The quasi-steady ratios per body part (``by_part``: derivative -> part -> its share, as a table's
+    ``by_part``), the ideal-fluid part ``ideal`` taken off the ``hull``'s shares. The added mass is the
+    hull's almost whole (the fins are thin), so a fin's share is viscous lift; for a fin the ratio is 1 if
+    its incidence in a turn is r x at its own station, as in drift it is v. Parts whose moment is under
+    PART_MOMENT_FLOOR of the body's viscous moment are left out."""
+    ratios = {}
+    for label, (force, moment) in QUASI_STEADY_PAIRS.items():
+        if force not in by_part or moment not in by_part:
+            continue
+
+        def viscous(name: str, part: str) -> float:
+            return by_part[name][part] - (ideal.get(name, 0.0) if part == hull else 0.0)
+
+        body_moment = sum(viscous(moment, part) for part in by_part[moment])
+        ratios[label] = {part: viscous(force, part) / viscous(moment, part) for part in by_part[moment]
+                         if part in by_part[force]
+                         and abs(viscous(moment, part)) >= PART_MOMENT_FLOOR * abs(body_moment)}
+    return ratios
+
+
+def viscous_split_payload(rows: list[ViscousSplit], by_part: Mapping[str, Mapping[str, float]] | None = None) -> dict:
+    """The split for a derivative table's JSON: per derivative its parts, then the quasi-steady ratios, of the
+    whole body and (given ``by_part``) of each part."""
     payload = {"derivatives": {row.name: {k: v for k, v in row.__dict__.items() if k != "name"} for row in rows},
                "quasi_steady_ratio": quasi_steady_ratios(rows)}
     measured = quasi_steady_ratios(rows, measured=True)
     if measured:
         payload["quasi_steady_ratio_measured"] = measured
+    per_part = part_quasi_steady_ratios(by_part, {row.name: row.ideal for row in rows}) if by_part else {}
+    if any(per_part.values()):
+        payload["quasi_steady_ratio_by_part"] = per_part
     return payload
