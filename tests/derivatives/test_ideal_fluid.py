@@ -111,6 +111,8 @@ def test_each_part_of_a_quasi_steady_body_has_a_ratio_of_one_and_an_edge_on_fin_
         payload = viscous_split_payload(rows, by_part)
         assert payload["quasi_steady_ratio_by_part"] == ratios
         assert "quasi_steady_ratio_by_part" not in viscous_split_payload(rows)
+    # a body whose parts have no hull to carry the ideal fluid gets none
+    assert part_quasi_steady_ratios({name: {"body": value["hull"]} for name, value in by_part.items()}, ideal) == {}
 
 
 def test_the_experiments_viscous_part_and_the_error_are_against_the_same_ideal_part():

@@ -111,15 +111,16 @@ def part_quasi_steady_ratios(by_part: Mapping[str, Mapping[str, float]], ideal: 
     ``by_part``), the ideal-fluid part ``ideal`` taken off the ``hull``'s shares. The added mass is the
     hull's almost whole (the fins are thin), so a fin's share is viscous lift; for a fin the ratio is 1 if
     its incidence in a turn is r x at its own station, as in drift it is v. Parts whose moment is under
-    PART_MOMENT_FLOOR of the body's viscous moment are left out."""
+    PART_MOMENT_FLOOR of the body's viscous moment are left out; without a part named ``hull`` nothing
+    can carry the ideal fluid, and there are no ratios."""
+
+    def viscous(name: str, part: str) -> float:
+        return by_part[name][part] - (ideal.get(name, 0.0) if part == hull else 0.0)
+
     ratios = {}
     for label, (force, moment) in QUASI_STEADY_PAIRS.items():
-        if force not in by_part or moment not in by_part:
+        if force not in by_part or moment not in by_part or hull not in by_part[moment]:
             continue
-
-        def viscous(name: str, part: str) -> float:
-            return by_part[name][part] - (ideal.get(name, 0.0) if part == hull else 0.0)
-
         body_moment = sum(viscous(moment, part) for part in by_part[moment])
         ratios[label] = {part: viscous(force, part) / viscous(moment, part) for part in by_part[moment]
                          if part in by_part[force]
