@@ -9,7 +9,6 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 
 @dataclass(frozen=True)
@@ -47,6 +46,10 @@ def body_axis_loads(times: np.ndarray, force: np.ndarray, moment: np.ndarray, *,
     vector is the fixed-axis one turned back, and the moment about B is the one about A less (B - A) x F,
     with B - A = -A fixed in body axes while turning and -A + V t in fixed axes when translating.
     """
+    # scipy here, not at the top: the load names above are read by the run monitor, which every CLI start
+    # imports, and scipy would double that start-up time for a check that only the inertial-turn script runs
+    from scipy.spatial.transform import Rotation
+
     axis = np.asarray(axis, float) / np.linalg.norm(axis)
     times = np.asarray(times, float)
     back = Rotation.from_rotvec(-omega * times[:, None] * axis)  # one rotation per time
