@@ -269,3 +269,33 @@ def test_manoeuvre_of_a_committed_table_writes_the_motion_and_flags_its_range(tm
     # a given inertia in one plane only: the other plane's motion is left out, not an error
     assert main(["stability", aff3, "--mass-prime", "0.02", "--xg-prime", "0", "--iz-prime", "0.0012"]) == 0
     assert "doubles in" in capsys.readouterr().out
+
+
+def test_a_study_of_straight_ahead_alone_reports_its_drag_beside_the_tow(tmp_path, capsys):
+    """No sweeps, no derivative: the study is a resistance check. A drag 5 % above the tow's reads +5 %."""
+    from hydroderiv.case import KNOT
+    from hydroderiv.experiments import resistance_interpolated
+    from hydroderiv.forces import PrimeScales
+    from hydroderiv.run.condition import RESULT_FILE
+    from hydroderiv.studies.study import Study
+
+    path = tmp_path / "s.toml"
+    path.write_text(f'[study]\nbody = "AFF-3"\nlevel = "coarse"\nspeed_knots = 6.5\nwork = "{tmp_path / "work"}"\n'
+                    'turbulence_model = "LienCubicKE"\n[sweeps]\n')
+    assert main(["derivatives", str(path)]) == 2
+    assert f"the straight-ahead condition of {path} has not finished" in capsys.readouterr().out.replace("\n", "")
+    study = Study.load(path)
+    scales = PrimeScales(998.55, study.speed, 4.261)
+    towed_n = resistance_interpolated("AFF-3", 6.5)
+    x = -1.05 * towed_n / scales.force
+    case = study.case_dir(study.conditions[0])
+    case.mkdir(parents=True)
+    (case / RESULT_FILE).write_text(json.dumps({
+        "converged": True, "iterations": 300, "coefficients": {"X": x, "Y": 0, "Z": 0, "K": 0, "M": 0, "N": 0},
+        "components": {"hull": {"X": 0.9 * x}, "appendage_top": {"X": 0.1 * x}}}))
+    record = json_output(tmp_path, "straight", "derivatives", str(path))
+    assert record["drag_error_pct"] == pytest.approx(5.0, rel=1e-9)
+    assert record["drag_N"] == pytest.approx(1.05 * towed_n, rel=1e-9)
+    assert record["drag_N_by_part"]["hull"] == pytest.approx(0.9 * record["drag_N"], rel=1e-9)
+    assert record["turbulence_model"] == "LienCubicKE" and study.speed == pytest.approx(6.5 * KNOT)
+    assert "+5.0" in capsys.readouterr().out

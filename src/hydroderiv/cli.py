@@ -153,6 +153,37 @@ def _study_run(args: argparse.Namespace) -> int:
     return _derivatives(args) if not args.no_table else _study_status(args)
 
 
+def _straight_ahead(study, results: list[dict], args: argparse.Namespace) -> int:
+    """Print and write the straight-ahead loads of a study without sweeps, the drag beside the tow."""
+    from .experiments import error_percent
+    from .forces import PrimeScales
+
+    if not results:
+        raise HydroderivError(f"the straight-ahead condition of {study.path} has not finished")
+    (result,) = results
+    vehicle = study.workspace.body(study.body, study.body_dir, write=False)
+    towed = _xuu_from_resistance(study, vehicle)
+    computed = result["coefficients"]["X"]
+    drag_n = -computed * PrimeScales(study.case_settings(vehicle).fluid.rho, study.speed, vehicle.reference.length).force
+    record = {"study": str(study.path), "level": study.level, "body": study.body or str(study.body_dir),
+              "speed_m_s": study.speed, **study.solver.record(), "converged": result["converged"],
+              "iterations": result["iterations"], "X": computed, "drag_N": drag_n,
+              "drag_N_by_part": {part: drag_n * loads["X"] / computed for part, loads in result["components"].items()},
+              # the drag's error, so that a computed drag above the tow's reads positive
+              "X_towed": towed, "drag_error_pct": None if towed is None else error_percent(-computed, -towed)}
+    table = Table(title=f"straight ahead, {record['body']} on the {study.level} mesh, {study.solver.turbulence_model}")
+    for column in ("X'", "drag (N)", "towed X'", "drag error (%)", "iterations"):
+        table.add_column(column, justify="right")
+    table.add_row(f"{computed:+.4e}", f"{drag_n:.2f}", "-" if towed is None else f"{towed:+.4e}",
+                  "-" if record["drag_error_pct"] is None else f"{record['drag_error_pct']:+.1f}",
+                  f"{result['iterations']}" + ("" if result["converged"] else " (not converged)"))
+    console.print(table)
+    out = Path(args.out) if getattr(args, "out", None) else study.work / "straight-ahead.json"
+    atomic_write_text(out, json.dumps(record, indent=2) + "\n")
+    console.print(f"written: {out}")
+    return 0
+
+
 def _study_status(args: argparse.Namespace) -> int:
     from .studies.study import Study
 
@@ -258,6 +289,8 @@ def _derivatives(args: argparse.Namespace) -> int:
         results = _conditions_of_table(Path(args.conditions))
     else:
         results = [r for c in study.conditions if (r := read_result(study.case_dir(c)))]
+    if len(study.conditions) == 1:  # straight ahead alone, no sweeps: a resistance check, no derivative to fit
+        return _straight_ahead(study, results, args)
     fits = fit_sweeps(results, study.nonlinear, study.fit_offset, study.max_angle_deg)  # once: the table and the plot show the same fits
     rows = table_rows(fits, reference_key=study.body)
     if not rows:

@@ -169,6 +169,55 @@ def test_simplec_relaxes_the_pressure_less_and_keeps_its_coupling_through_the_sw
         SolverOptions(pressure_velocity_coupling="PISO")
 
 
+def test_turbulence_convected_first_order_stays_first_order_through_the_switch_and_momentum_goes_second(tmp_path):
+    from foamlib import FoamFile
+
+    from hydroderiv.case import Condition
+    from hydroderiv.case.numerics import FIRST_ORDER, has_second_order_convection, switch_to_second_order_convection
+    from hydroderiv.case.setup import CaseSettings, write_condition_case
+
+    mesh = tmp_path / "mesh"
+    (mesh / "constant/polyMesh").mkdir(parents=True)
+    for order in ("second", "first"):
+        settings = CaseSettings(length=4.261, components=("hull",),
+                                solver=SolverOptions(turbulence_model="SpalartAllmaras", turbulence_convection=order))
+        case = write_condition_case(tmp_path / order, mesh, Condition(speed=3.344), settings)  # a cold start
+        switch_to_second_order_convection(case, settings.limiters_after_start(), settings.solver.turbulence_convection)
+        assert has_second_order_convection(case)
+        div = FoamFile(case / "system/fvSchemes")["divSchemes"]
+        nu_tilda = " ".join(map(str, div["div(phi,nuTilda)"]))
+        assert (nu_tilda == FIRST_ORDER) is (order == "first")
+        assert " ".join(map(str, div["div(phi,U)"])) != FIRST_ORDER
+
+
+def test_the_reynolds_stress_model_gets_an_isotropic_stress_k_s_wall_function_and_its_heavier_relaxation(tmp_path):
+    from foamlib import FoamFile
+
+    from hydroderiv.case import Condition
+    from hydroderiv.case.fluid import FreestreamTurbulence
+    from hydroderiv.case.setup import CaseSettings, write_condition_case
+
+    mesh = tmp_path / "mesh"
+    (mesh / "constant/polyMesh").mkdir(parents=True)
+    cases = {}
+    for model in ("LRR", "kOmegaSST"):
+        settings = CaseSettings(length=4.261, components=("hull",), solver=SolverOptions(turbulence_model=model))
+        cases[model] = write_condition_case(tmp_path / model, mesh, Condition(speed=3.344), settings)
+    lrr = cases["LRR"]
+    assert (lrr / "0/R").is_file() and (lrr / "0/epsilon").is_file() and not (lrr / "0/k").exists()
+    k = FreestreamTurbulence().k(3.344)
+    with FoamFile(lrr / "0/R") as f:
+        assert f["FoamFile"]["class"] == "volSymmTensorField"
+        assert list(f["internalField"]) == pytest.approx([2 * k / 3, 0, 0, 2 * k / 3, 0, 2 * k / 3])
+        assert list(f["boundaryField"]["farfield"]["inletValue"]) == pytest.approx(list(f["internalField"]))
+        assert f["boundaryField"]["bodyWalls"]["type"] == "kqRWallFunction"
+    assert FoamFile(lrr / "0/nut")["boundaryField"]["bodyWalls"]["type"] == "nutkWallFunction"  # its k is half R's trace
+    relaxed = FoamFile(lrr / "system/fvSolution")["relaxationFactors"]
+    plain = FoamFile(cases["kOmegaSST"] / "system/fvSolution")["relaxationFactors"]
+    assert relaxed["equations"]["U"] < plain["equations"]["U"] and relaxed["fields"]["p"] < plain["fields"]["p"]
+    assert relaxed["equations"]["R"] < relaxed["equations"]["epsilon"] == plain["equations"]["epsilon"]
+
+
 def test_a_k_epsilon_model_gets_epsilon_from_the_same_free_stream_and_its_own_wall_function(tmp_path):
     from foamlib import FoamFile
 

@@ -12,17 +12,18 @@ def test_the_defaults_are_the_plain_set_up_and_add_nothing_to_the_folder_name():
     assert plain.folder_suffix == ""
     assert plain.record() == {"turbulence_model": "kOmegaSST", "limited_pressure_gradient": False,
                               "limited_velocity_gradient": "everywhere", "velocity_limiter_coefficient": 1.0,
-                              "pressure_velocity_coupling": "SIMPLE"}
+                              "pressure_velocity_coupling": "SIMPLE", "turbulence_convection": "second"}
 
 
 def test_every_choice_shows_in_the_folder_name_in_a_fixed_order():
     table = {"turbulence_model": "SpalartAllmaras", "limit_pressure_gradient": True,
              "limit_velocity_gradient": "convection", "velocity_limiter_coefficient": 0.5,
-             "pressure_velocity_coupling": "SIMPLEC"}
+             "pressure_velocity_coupling": "SIMPLEC", "turbulence_convection": "first"}
     assert set(table) == set(STUDY_TABLE_KEYS)
     options = SolverOptions.from_study_table(table, "s.toml")
     assert options.folder_suffix == ("-SpalartAllmaras-limited-grad-p-grad-U-limited-in-convection-grad-U-limiter-0.5"
-                                     "-SIMPLEC")
+                                     "-SIMPLEC-first-order-turbulence")
+    assert options.record()["turbulence_convection"] == "first"
     assert options.record()["velocity_limiter_coefficient"] == 0.5
     assert options.record()["limited_pressure_gradient"] is True
 
@@ -38,6 +39,7 @@ def test_a_pressure_gradient_limited_only_at_the_start_keeps_the_unlimited_folde
     ({"turbulence_model": "kEpsilonQCR"}, "s.toml: unknown turbulence model 'kEpsilonQCR'"),
     ({"limit_velocity_gradient": "here"}, "s.toml: limit_velocity_gradient = 'here' must be one of"),
     ({"pressure_velocity_coupling": "PIMPLE"}, "s.toml: pressure_velocity_coupling = 'PIMPLE' must be one of"),
+    ({"turbulence_convection": "third"}, "s.toml: turbulence_convection = 'third' must be one of 'second', 'first'"),
     ({"velocity_limiter_coefficient": 0}, "s.toml: velocity_limiter_coefficient = 0 must be a number in \\(0, 1\\]"),
     ({"velocity_limiter_coefficient": 1.5}, "s.toml: velocity_limiter_coefficient = 1.5 must be"),
     ({"velocity_limiter_coefficient": "half"}, "s.toml: velocity_limiter_coefficient = 'half' must be"),

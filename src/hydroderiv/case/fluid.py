@@ -46,10 +46,17 @@ class FreestreamTurbulence:
             chi -= residual / slope
         return chi * nu
 
-    def value(self, field: str, speed: float, nu: float) -> float:
-        """The free-stream value of the transported turbulence field ``field`` (k, omega, epsilon or nuTilda)."""
+    def reynolds_stress(self, speed: float) -> tuple[float, ...]:
+        """The free stream's Reynolds stress R (xx, xy, xz, yy, yz, zz): isotropic, 2/3 k on the diagonal."""
+        normal = 2.0 * self.k(speed) / 3.0
+        return (normal, 0.0, 0.0, normal, 0.0, normal)
+
+    def value(self, field: str, speed: float, nu: float) -> float | tuple[float, ...]:
+        """The free-stream value of the transported turbulence field ``field`` (k, omega, epsilon, nuTilda,
+        or the Reynolds stress R, a symmetric tensor)."""
         values = {"k": lambda: self.k(speed), "omega": lambda: self.omega(speed, nu),
-                  "epsilon": lambda: self.epsilon(speed, nu), "nuTilda": lambda: self.nu_tilda(nu)}
+                  "epsilon": lambda: self.epsilon(speed, nu), "nuTilda": lambda: self.nu_tilda(nu),
+                  "R": lambda: self.reynolds_stress(speed)}
         if field not in values:
             raise ValueError(f"no free-stream value for the turbulence field {field!r}; known: {', '.join(values)}")
         return values[field]()
@@ -64,8 +71,12 @@ class FreestreamTurbulence:
 # the thick NACA 0020 fins even straight ahead (issue-4 notes, 2026-12-02). Lien, Chen & Leschziner's cubic
 # k-epsilon adds stresses cubic in strain and rotation as well: the cubic terms are the ones that make an
 # eddy-viscosity model feel streamline curvature and swirl, which a turn adds to what the drift has.
+# Launder, Reece & Rodi's Reynolds-stress model (LRR) does not tie the stresses to the strain through an eddy
+# viscosity at all: it transports the six stresses R (with epsilon), so curvature, swirl and the anisotropy
+# of the crossflow vortices act through the stresses' own production terms. It needs first-order convection of R and epsilon and heavier
+# under-relaxation on these meshes (case/numerics.py, TURBULENCE_CONVECTION_ORDERS and MODEL_RELAXATION).
 TURBULENCE_MODELS = {"kOmegaSST": ("k", "omega"), "ShihQuadraticKE": ("k", "epsilon"), "LienCubicKE": ("k", "epsilon"),
-                     "realizableKE": ("k", "epsilon"), "SpalartAllmaras": ("nuTilda",)}
+                     "realizableKE": ("k", "epsilon"), "SpalartAllmaras": ("nuTilda",), "LRR": ("R", "epsilon")}
 DEFAULT_TURBULENCE_MODEL = "kOmegaSST"
 C_MU = 0.09  # epsilon = C_mu k omega
 SA_CV1 = 7.1  # Spalart & Allmaras (1994), the constant of the wall-damping function fv1

@@ -11,7 +11,7 @@ from pathlib import Path
 
 from .._foam import write_foam_dict
 from ..errors import ConfigurationError
-from .fluid import TURBULENCE_MODELS
+from .fluid import DEFAULT_TURBULENCE_MODEL, TURBULENCE_MODELS
 
 
 SECOND_ORDER = "bounded Gauss linearUpwind"  # followed by the name of the gradient scheme it reconstructs with
@@ -26,7 +26,7 @@ def limited_gradient(coefficient: float = 1.0) -> str:
 
 LIMITED_GRADIENT = limited_gradient(1.0)
 
-# every field some model of TURBULENCE_MODELS transports: k, omega, epsilon, nuTilda
+# every field some model of TURBULENCE_MODELS transports: k, omega, epsilon, nuTilda, R
 TURBULENCE_FIELDS = tuple(dict.fromkeys(field for fields in TURBULENCE_MODELS.values() for field in fields))
 
 
@@ -81,6 +81,24 @@ DEFAULT_VELOCITY_LIMITER_COEFFICIENT = 1.0
 # (2026-12-07, scripts/continue_condition.py --non-orthogonal-correction 1): the limit is not what the
 # rotary derivatives lack.
 NON_ORTHOGONAL_CORRECTION = "limited corrected 0.33"
+
+
+# The convection of the transported turbulence fields once second order takes over: "second" (the default,
+# as momentum's) or "first" (upwind, bounded and diffusive). The Reynolds-stress model needs "first" on these
+# meshes (coarse AFF-3, 2026-12-07, by hand): with second-order convection of R and epsilon it diverged within
+# 40 iterations of the cubic k-epsilon's solution even with R relaxed by 0.3, and within 146 after 150 stable
+# first-order ones. A table computed so is comparable with others computed so, not with the second-order ones.
+TURBULENCE_CONVECTION_ORDERS = ("second", "first")
+
+# Under-relaxation a model needs beyond the defaults (U 0.7, the turbulence fields 0.6, p as the coupling
+# says; a smaller factor wins). The Reynolds-stress model ran stably on the coarse AFF-3 mesh only with these
+# (the same hand runs). The converged steady solution does not depend on them; the iterations to it do.
+MODEL_RELAXATION = {"LRR": {"U": 0.5, "R": 0.2, "p": 0.2}}
+
+
+def check_turbulence_convection(value, source: str = "") -> str:
+    """``value`` if it is an order of TURBULENCE_CONVECTION_ORDERS; else an error naming ``source`` and the choices."""
+    return _one_of("turbulence_convection", value, TURBULENCE_CONVECTION_ORDERS, source)
 
 
 # The pressure-velocity coupling. "SIMPLE" (the default, and that of every result before the resolved-wall
@@ -146,9 +164,9 @@ def check_velocity_limiter_coefficient(value, source: str = "") -> float:
     return float(value)
 
 
-def _convection_schemes(second_order: bool, limiters: GradientLimiters) -> dict[str, str]:
+def _convection_schemes(second_order: bool, limiters: GradientLimiters, turbulence_convection: str) -> dict[str, str]:
     def scheme(field: str) -> str:
-        if not second_order:
+        if not second_order or (field != "U" and turbulence_convection == "first"):
             return FIRST_ORDER
         limited_for_convection_only = field == "U" and limiters.velocity == "convection"
         return f"{SECOND_ORDER} {LIMITED_FOR_CONVECTION if limited_for_convection_only else f'grad({field})'}"
@@ -169,7 +187,7 @@ def _gradient_schemes(limiters: GradientLimiters) -> dict[str, str]:
     return schemes
 
 
-def _write_schemes(case: Path, second_order: bool, limiters: GradientLimiters) -> None:
+def _write_schemes(case: Path, second_order: bool, limiters: GradientLimiters, turbulence_convection: str) -> None:
     write_foam_dict(
         Path(case) / "system/fvSchemes",
         {
@@ -177,8 +195,12 @@ def _write_schemes(case: Path, second_order: bool, limiters: GradientLimiters) -
             "gradSchemes": _gradient_schemes(limiters),
             "divSchemes": {
                 "default": "none",
-                **_convection_schemes(second_order, limiters),
+                **_convection_schemes(second_order, limiters, check_turbulence_convection(turbulence_convection)),
                 "div(nonlinearStress)": "Gauss linear",  # the nonlinear stresses of ShihQuadraticKE and LienCubicKE
+                # the Reynolds-stress model's stress in the momentum equation, and its viscous part (it
+                # takes the molecular viscosity's stress apart from the turbulent one)
+                "div(R)": "Gauss linear",
+                "div((nu*dev2(T(grad(U)))))": "Gauss linear",
                 "div((nuEff*dev2(T(grad(U)))))": "Gauss linear",
             },
             "laplacianSchemes": {"default": f"Gauss linear {NON_ORTHOGONAL_CORRECTION}"},
@@ -190,11 +212,18 @@ def _write_schemes(case: Path, second_order: bool, limiters: GradientLimiters) -
 
 
 def write_numerics(case: Path, second_order: bool = True, limiters: GradientLimiters = GradientLimiters(),
-                   coupling: str = "SIMPLE") -> None:
-    """fvSchemes and fvSolution. Second-order (bounded linear-upwind) convection for validation runs;
-    ``coupling`` is one of PRESSURE_VELOCITY_COUPLINGS."""
-    _write_schemes(case, second_order, limiters)
+                   coupling: str = "SIMPLE", turbulence_model: str = DEFAULT_TURBULENCE_MODEL,
+                   turbulence_convection: str = "second") -> None:
+    """fvSchemes and fvSolution. Second-order (bounded linear-upwind) convection for validation runs (the
+    turbulence fields' as ``turbulence_convection`` says); ``coupling`` is one of PRESSURE_VELOCITY_COUPLINGS;
+    ``turbulence_model`` may need more under-relaxation (MODEL_RELAXATION)."""
+    _write_schemes(case, second_order, limiters, turbulence_convection)
     simple = PRESSURE_VELOCITY_COUPLINGS[check_pressure_velocity_coupling(coupling)]
+    equations = {"U": 0.7, **{field: 0.6 for field in TURBULENCE_FIELDS}}
+    fields = {"p": simple["p"]}
+    for name, factor in MODEL_RELAXATION.get(turbulence_model, {}).items():
+        relaxed = fields if name == "p" else equations
+        relaxed[name] = min(relaxed[name], factor)
     write_foam_dict(
         Path(case) / "system/fvSolution",
         {
@@ -204,17 +233,16 @@ def write_numerics(case: Path, second_order: bool = True, limiters: GradientLimi
                                                            "tolerance": 1e-8, "relTol": 0.1},
             },
             "SIMPLE": {"nNonOrthogonalCorrectors": 0, "consistent": simple["consistent"]},
-            "relaxationFactors": {"fields": {"p": simple["p"]},
-                                  "equations": {"U": 0.7, **{field: 0.6 for field in TURBULENCE_FIELDS}}},
+            "relaxationFactors": {"fields": fields, "equations": equations},
         },
     )
 
 
-def switch_to_second_order_convection(case: Path, limiters: GradientLimiters) -> None:
-    """Rewrite the case's schemes with second-order convection (simpleFoam re-reads them) and the
-    gradient limiters that hold from here on (CaseSettings.limiters_after_start). The solution controls
-    (fvSolution) stay as the case was set up."""
-    _write_schemes(case, second_order=True, limiters=limiters)
+def switch_to_second_order_convection(case: Path, limiters: GradientLimiters, turbulence_convection: str = "second") -> None:
+    """Rewrite the case's schemes with second-order convection (simpleFoam re-reads them; the turbulence
+    fields' as ``turbulence_convection`` says) and the gradient limiters that hold from here on
+    (CaseSettings.limiters_after_start). The solution controls (fvSolution) stay as the case was set up."""
+    _write_schemes(case, second_order=True, limiters=limiters, turbulence_convection=turbulence_convection)
 
 
 def has_second_order_convection(case: Path) -> bool:

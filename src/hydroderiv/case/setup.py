@@ -188,21 +188,26 @@ def _write_physics(case: Path, frame: FrameSetup, s: CaseSettings) -> None:
 
 
 # Each transported turbulence field: its dimensions and its condition on the body. k, omega and epsilon
-# take wall functions; Spalart-Allmaras' nuTilda is zero at a wall at any y+ (the wall law is nut's).
+# take wall functions; Spalart-Allmaras' nuTilda is zero at a wall at any y+ (the wall law is nut's). The
+# Reynolds stress R takes k's wall function (kqRWallFunction is a zero gradient for k, q and R alike).
 _TURBULENCE_FIELDS = {
     "k": ("[0 2 -2 0 0 0 0]", "kqRWallFunction"),
+    "R": ("[0 2 -2 0 0 0 0]", "kqRWallFunction"),
     "omega": ("[0 0 -1 0 0 0 0]", "omegaWallFunction"),
     "epsilon": ("[0 2 -3 0 0 0 0]", "epsilonWallFunction"),
     "nuTilda": ("[0 2 -1 0 0 0 0]", "fixedValue"),
 }
 
 
-def _transported_turbulence(field: str, value: float) -> dict:
+def _transported_turbulence(field: str, value: float | tuple[float, ...]) -> dict:
     """A transported turbulence field: the free-stream value where the far field flows in, its wall
-    condition on the body."""
+    condition on the body. A tuple ``value`` is a symmetric tensor's six components (R)."""
     dimensions, wall = _TURBULENCE_FIELDS[field]
+    tensor = isinstance(value, tuple)
+    if tensor:
+        value = list(value)  # foamlib writes a list of numbers as one uniform value, a tuple as several entries
     return {
-        "class": "volScalarField",
+        "class": "volSymmTensorField" if tensor else "volScalarField",
         "dimensions": dimensions,
         "internal": value,
         "farfield": {"type": "inletOutlet", "inletValue": value, "value": value},
@@ -214,9 +219,9 @@ def _fields(condition: Condition, frame: FrameSetup, s: CaseSettings) -> dict[st
     # Field files: foamlib writes a plain value of a field entry as 'uniform <value>'.
     inflow = _vector(frame.farfield_velocity)
     transported = TURBULENCE_MODELS[s.solver.turbulence_model]
-    # nut's wall law from k for the k models; Spalding's single law from the velocity, valid at any y+, for
-    # Spalart-Allmaras, which has no k
-    nut_wall = "nutkWallFunction" if "k" in transported else "nutUSpaldingWallFunction"
+    # nut's wall law from k for the models that have a k (the Reynolds-stress model's is half R's trace);
+    # Spalding's single law from the velocity, valid at any y+, for Spalart-Allmaras, which has no k
+    nut_wall = "nutUSpaldingWallFunction" if "nuTilda" in transported else "nutkWallFunction"
     if frame.whole_domain_rotates:
         # Fluid at rest far away: an open boundary at zero total pressure that lets the body's displacement
         # flow in and out. (freestreamVelocity divides by the free-stream speed, which is zero here.)
@@ -334,7 +339,9 @@ def write_condition_case(
     _link_mesh(case, mesh_case, whole_domain_zone=frame.whole_domain_rotates)
     _write_control(case, settings)
     write_numerics(case, settings.second_order and settings.second_order_from(warm_start) is None,
-                   limiters=settings.limiters_at_start(warm_start), coupling=settings.solver.pressure_velocity_coupling)
+                   limiters=settings.limiters_at_start(warm_start), coupling=settings.solver.pressure_velocity_coupling,
+                   turbulence_model=settings.solver.turbulence_model,
+                   turbulence_convection=settings.solver.turbulence_convection)
     write_decomposition(case, settings.n_procs)
     _write_physics(case, frame, settings)
     n_cells = mesh_cell_count(mesh_case / "constant/polyMesh") if warm_start is not None else None

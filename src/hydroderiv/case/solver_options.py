@@ -12,16 +12,17 @@ from typing import Any
 from ..errors import ConfigurationError
 from .fluid import DEFAULT_TURBULENCE_MODEL, check_turbulence_model
 from .numerics import (DEFAULT_VELOCITY_LIMITER_COEFFICIENT, GradientLimiters, check_pressure_velocity_coupling,
-                       check_velocity_limiter)
+                       check_turbulence_convection, check_velocity_limiter)
 
 # the [study] keys read by SolverOptions.from_study_table
 STUDY_TABLE_KEYS = ("turbulence_model", "limit_pressure_gradient", "limit_velocity_gradient", "velocity_limiter_coefficient",
-                    "pressure_velocity_coupling")
+                    "pressure_velocity_coupling", "turbulence_convection")
 
 
 @dataclass(frozen=True)
 class SolverOptions:
-    """Turbulence model, gradient limiters and pressure-velocity coupling (see case/fluid.py, case/numerics.py)."""
+    """Turbulence model, gradient limiters, pressure-velocity coupling and the turbulence fields' convection
+    order (see case/fluid.py, case/numerics.py)."""
 
     turbulence_model: str = DEFAULT_TURBULENCE_MODEL  # see hydroderiv.case.fluid.TURBULENCE_MODELS
     limit_pressure_gradient: bool = False  # see hydroderiv.case.numerics.LIMITED_PRESSURE_GRADIENT
@@ -32,6 +33,7 @@ class SolverOptions:
     # k of that limiter (see hydroderiv.case.numerics.DEFAULT_VELOCITY_LIMITER_COEFFICIENT)
     velocity_limiter_coefficient: float = DEFAULT_VELOCITY_LIMITER_COEFFICIENT
     pressure_velocity_coupling: str = "SIMPLE"  # see hydroderiv.case.numerics.PRESSURE_VELOCITY_COUPLINGS
+    turbulence_convection: str = "second"  # see hydroderiv.case.numerics.TURBULENCE_CONVECTION_ORDERS
 
     def __post_init__(self):
         if self.limit_pressure_gradient and self.limit_pressure_gradient_at_start:
@@ -39,6 +41,7 @@ class SolverOptions:
         check_turbulence_model(self.turbulence_model)
         check_velocity_limiter(self.limit_velocity_gradient, self.velocity_limiter_coefficient)
         check_pressure_velocity_coupling(self.pressure_velocity_coupling)
+        check_turbulence_convection(self.turbulence_convection)
 
     @classmethod
     def from_study_table(cls, table: dict[str, Any], source: str = "") -> SolverOptions:
@@ -59,6 +62,7 @@ class SolverOptions:
             velocity_limiter_coefficient=float(velocity_limiter_coefficient),
             pressure_velocity_coupling=check_pressure_velocity_coupling(
                 table.get("pressure_velocity_coupling", "SIMPLE"), source),
+            turbulence_convection=check_turbulence_convection(table.get("turbulence_convection", "second"), source),
         )
 
     @property
@@ -72,7 +76,8 @@ class SolverOptions:
              "nowhere": "-unlimited-grad-U"}[self.limit_velocity_gradient]) + (
             f"-grad-U-limiter-{self.velocity_limiter_coefficient:g}"
             if self.velocity_limiter_coefficient != DEFAULT_VELOCITY_LIMITER_COEFFICIENT else "") + (
-            f"-{self.pressure_velocity_coupling}" if self.pressure_velocity_coupling != "SIMPLE" else "")
+            f"-{self.pressure_velocity_coupling}" if self.pressure_velocity_coupling != "SIMPLE" else "") + (
+            "-first-order-turbulence" if self.turbulence_convection == "first" else "")
 
     def gradient_limiters(self, pressure: bool) -> GradientLimiters:
         """The gradient limiters of these options, the pressure gradient limited or not as ``pressure``
@@ -86,4 +91,5 @@ class SolverOptions:
                 "limited_pressure_gradient": self.limit_pressure_gradient,
                 "limited_velocity_gradient": self.limit_velocity_gradient,  # everywhere, or in convection only
                 "velocity_limiter_coefficient": self.velocity_limiter_coefficient,
-                "pressure_velocity_coupling": self.pressure_velocity_coupling}
+                "pressure_velocity_coupling": self.pressure_velocity_coupling,
+                "turbulence_convection": self.turbulence_convection}

@@ -166,7 +166,8 @@ def run_condition(
     else:
         second_order_from = settings.second_order_from(warm_start)
     result = run_steady(case, scales, settings.components, criterion, n, on_progress,
-                        second_order_from=second_order_from, limiters_after_switch=settings.limiters_after_start())
+                        second_order_from=second_order_from, limiters_after_switch=settings.limiters_after_start(),
+                        turbulence_convection=settings.solver.turbulence_convection)
     if n > 1:
         run_application(case, ["reconstructPar", "-latestTime"], log_name="reconstructPar")
         for processor in case.glob("processor*"):

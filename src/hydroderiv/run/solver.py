@@ -88,6 +88,7 @@ def run_steady(
     poll_seconds: float = 1.0,
     second_order_from: int | None = None,
     limiters_after_switch: GradientLimiters = GradientLimiters(),
+    turbulence_convection: str = "second",
 ) -> RunResult:
     """Run simpleFoam in ``case`` until the forces converge; raise :class:`SolverDivergedError` on divergence.
 
@@ -97,7 +98,8 @@ def run_steady(
     With ``second_order_from``, the case starts with first-order convection: at that iteration its
     convection schemes are switched to second order (simpleFoam re-reads fvSchemes), and convergence is
     judged only on windows of second-order iterations. ``limiters_after_switch`` are the
-    gradient limiters after the switch.
+    gradient limiters after the switch, and ``turbulence_convection`` the turbulence fields' order after it
+    (case/numerics.py, TURBULENCE_CONVECTION_ORDERS).
     """
     case = Path(case)
     (case / STOP_FILE).unlink(missing_ok=True)
@@ -129,7 +131,7 @@ def run_steady(
                 if finished:
                     break
                 if switch_pending and watcher.iteration >= second_order_from:
-                    switch_to_second_order_convection(case, limiters_after_switch)
+                    switch_to_second_order_convection(case, limiters_after_switch, turbulence_convection)
                     switch_pending = False
                 # the windows judged must hold second-order iterations only
                 if not stop_requested and criterion.is_met(iterations, coefficients, since=second_order_from):

@@ -9,11 +9,13 @@ Example::
     n_procs = 2
     work = "runs/aff8-coarse" # optional; default: runs/<file stem>
     method = "hybrid"         # optional: "hybrid" (default) or "classic" (whole domain rotates, for verification)
-    turbulence_model = "kOmegaSST"  # optional: or "ShihQuadraticKE", "LienCubicKE", "realizableKE", "SpalartAllmaras" (case/fluid.py)
+    turbulence_model = "kOmegaSST"  # optional: or "ShihQuadraticKE", "LienCubicKE", "realizableKE", "SpalartAllmaras",
+                                    # "LRR" (a Reynolds-stress model; needs turbulence_convection = "first") (case/fluid.py)
     limit_pressure_gradient = false  # optional: true, or "start" (case/numerics.py)
     limit_velocity_gradient = "everywhere"  # optional: or "convection", "nowhere" (case/numerics.py)
     velocity_limiter_coefficient = 1.0  # optional: k of that limiter, in (0, 1]; smaller limits less (case/numerics.py)
     pressure_velocity_coupling = "SIMPLE"  # optional: or "SIMPLEC", for walls resolved to y+ ~ 1 (case/numerics.py)
+    turbulence_convection = "second"  # optional: or "first", the turbulence fields convected upwind (case/numerics.py)
 
     [sweeps]                  # one variable at a time about straight-ahead
     drift_deg = [-8, -4, 4, 8]

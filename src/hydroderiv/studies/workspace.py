@@ -11,7 +11,8 @@
     <work>/conditions-...-limited-grad-p/  the same with the pressure gradient limited
     <work>/conditions-...-grad-U-limited-in-convection/  the same with the velocity gradient limited in the
                                 convection scheme only (case/numerics.py), -unlimited-grad-U/ not at all;
-                                -SIMPLEC/ with that coupling (case/solver_options.py names them all)
+                                -SIMPLEC/ with that coupling, -first-order-turbulence/ with the
+                                turbulence fields convected first order (case/solver_options.py names them all)
 """
 
 from __future__ import annotations
