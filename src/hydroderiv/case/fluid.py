@@ -73,8 +73,9 @@ class FreestreamTurbulence:
 # eddy-viscosity model feel streamline curvature and swirl, which a turn adds to what the drift has.
 # Launder, Reece & Rodi's Reynolds-stress model (LRR) does not tie the stresses to the strain through an eddy
 # viscosity at all: it transports the six stresses R (with epsilon), so curvature, swirl and the anisotropy
-# of the crossflow vortices act through the stresses' own production terms. It needs first-order convection of R and epsilon and heavier
-# under-relaxation on these meshes (case/numerics.py, TURBULENCE_CONVECTION_ORDERS and MODEL_RELAXATION).
+# of the crossflow vortices act through the stresses' own production terms. It needs first-order convection
+# of R and epsilon and heavier under-relaxation on these meshes (case/numerics.py,
+# TURBULENCE_CONVECTION_ORDERS and MODEL_RELAXATION).
 TURBULENCE_MODELS = {"kOmegaSST": ("k", "omega"), "ShihQuadraticKE": ("k", "epsilon"), "LienCubicKE": ("k", "epsilon"),
                      "realizableKE": ("k", "epsilon"), "SpalartAllmaras": ("nuTilda",), "LRR": ("R", "epsilon")}
 DEFAULT_TURBULENCE_MODEL = "kOmegaSST"
