@@ -283,7 +283,8 @@ def test_a_study_of_straight_ahead_alone_reports_its_drag_beside_the_tow(tmp_pat
     path.write_text(f'[study]\nbody = "AFF-3"\nlevel = "coarse"\nspeed_knots = 6.5\nwork = "{tmp_path / "work"}"\n'
                     'turbulence_model = "LienCubicKE"\n[sweeps]\n')
     assert main(["derivatives", str(path)]) == 2
-    assert f"the straight-ahead condition of {path} has not finished" in capsys.readouterr().out.replace("\n", "")
+    message = " ".join(capsys.readouterr().out.split())
+    assert "the straight-ahead condition of" in message and "s.toml has not finished" in message
     study = Study.load(path)
     scales = PrimeScales(998.55, study.speed, 4.261)
     towed_n = resistance_interpolated("AFF-3", 6.5)
