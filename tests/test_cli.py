@@ -300,3 +300,33 @@ def test_a_study_of_straight_ahead_alone_reports_its_drag_beside_the_tow(tmp_pat
     assert record["drag_N_by_part"]["hull"] == pytest.approx(0.9 * record["drag_N"], rel=1e-9)
     assert record["turbulence_model"] == "LienCubicKE" and study.speed == pytest.approx(6.5 * KNOT)
     assert "+5.0" in capsys.readouterr().out
+
+
+def test_resistance_runs_the_turbulence_model_asked_for_in_its_own_conditions_folder(tmp_path, capsys, monkeypatch):
+    """The solver is replaced by a stand-in that records what it was given: this checks the bookkeeping."""
+    import hydroderiv.studies.resistance as resistance
+    from hydroderiv.studies.workspace import Workspace
+
+    assert main(["resistance", "--config", "AFF-3", "--work", str(tmp_path / "w"), "--turbulence-model", "kEpsilonX"]) == 2
+    assert "--turbulence-model: unknown turbulence model 'kEpsilonX'" in capsys.readouterr().out
+    assert not (tmp_path / "w").exists()
+    runs = []
+
+    def stand_in(case, mesh_dir, condition, settings, criterion, warm_start=None, on_progress=None):
+        runs.append((case, settings.solver.turbulence_model))
+        return {"force_N": [-100.0, 0.0, 0.0], "iterations": 200, "converged": True, "wall_seconds": 1.0,
+                "warm_start": warm_start, "yplus": {}}
+
+    monkeypatch.setattr(Workspace, "mesh", lambda self, body, log=print, n_procs=1: {"cells": 1000})
+    monkeypatch.setattr(resistance, "run_condition", stand_in)
+    monkeypatch.setattr(resistance, "_force_parts", lambda case, window: {"pressure": 20.0, "viscous": 80.0})
+    monkeypatch.setattr(resistance, "latest_time_dir", lambda case: None)
+    monkeypatch.setattr("hydroderiv.report.resistance.plot_resistance", lambda points, path, title: path)
+    results = tmp_path / "r.json"
+    assert main(["resistance", "--config", "AFF-3", "--work", str(tmp_path / "w"), "--speeds", "5.92",
+                 "--turbulence-model", "LienCubicKE", "--results", str(results)]) == 0
+    assert [(case.parent.name, model) for case, model in runs] == [("conditions-LienCubicKE", "LienCubicKE")]
+    (point,) = json.loads(results.read_text())
+    assert point["turbulence_model"] == "LienCubicKE" and point["experiment_N"] == 95.41
+    assert point["error_pct"] == pytest.approx(100 * (100.0 - 95.41) / 95.41, abs=0.01)
+    assert "LienCubicKE" in capsys.readouterr().out

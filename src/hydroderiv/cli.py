@@ -14,6 +14,7 @@ from rich.console import Console
 from rich.table import Table
 
 from ._io import atomic_write_text
+from .case.fluid import DEFAULT_TURBULENCE_MODEL, TURBULENCE_MODELS, check_turbulence_model
 from .errors import ConfigurationError, HydroderivError
 from .experiments import RESISTANCE
 from .geometry import CONFIGURATIONS, Body, load_user_body, suboff_body
@@ -120,6 +121,7 @@ def _mesh(args: argparse.Namespace) -> int:
 
 
 def _resistance(args: argparse.Namespace) -> int:
+    from .case.solver_options import SolverOptions
     from .report.resistance import plot_resistance, resistance_table
     from .studies.resistance import max_abs_error_pct, run_resistance
 
@@ -130,12 +132,14 @@ def _resistance(args: argparse.Namespace) -> int:
     results = Path(args.results) if args.results else Path(args.work) / "resistance.json"
     # Resistance needs the drag settled; the other coefficients are reported, not waited for.
     criterion = ConvergenceCriterion(max_iterations=args.max_iterations, monitored=("X",))
+    solver = SolverOptions(turbulence_model=check_turbulence_model(args.turbulence_model, "--turbulence-model"))
     points = run_resistance(
         args.work, args.level, speeds, config=config, body_dir=args.body, n_procs=args.np, criterion=criterion,
         results_path=results, log=console.print,
         on_progress=_progress_printer(lambda knots: f"{knots:5.2f} kn"), mesh_options=_mesh_options(args),
+        solver=solver,
     )
-    title = f"{points[0]['body']} resistance, {args.level} mesh ({points[0]['cells']} cells)"
+    title = f"{points[0]['body']} resistance, {args.level} mesh ({points[0]['cells']} cells), {solver.turbulence_model}"
     console.print(resistance_table(points, title))
     plot = plot_resistance(points, results.with_suffix(".png"), title)
     worst = max_abs_error_pct(points)
@@ -758,6 +762,9 @@ def build_parser() -> argparse.ArgumentParser:
     res.add_argument("--max-iterations", type=int, default=3000)
     res.add_argument("--work", required=True, help="working directory (geometry, mesh, cases); resumable")
     res.add_argument("--results", help="results JSON (default WORK/resistance.json); the plot goes beside it")
+    res.add_argument("--turbulence-model", default=DEFAULT_TURBULENCE_MODEL,
+                     help=f"RAS model (default {DEFAULT_TURBULENCE_MODEL}; one of {', '.join(TURBULENCE_MODELS)}); "
+                          "its speeds go to WORK/conditions-<model>/")
     res.set_defaults(func=_resistance)
 
     study = steps.add_parser("study", help="captive-test studies from a TOML file (see studies/study.py)")

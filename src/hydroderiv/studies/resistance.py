@@ -11,6 +11,7 @@ import numpy as np
 from .._io import atomic_write_text
 from ..case import KNOT, Condition
 from ..case.setup import CaseSettings, latest_time_dir
+from ..case.solver_options import SolverOptions
 from ..experiments import RESISTANCE, error_percent, resistance_at
 from ..forces import PrimeScales, read_history
 from ..run.condition import run_condition
@@ -37,17 +38,19 @@ def run_resistance(
     log: Callable[[str], None] = print,
     on_progress: Callable[[float, Progress], None] | None = None,
     mesh_options: dict[str, float] | None = None,
+    solver: SolverOptions = SolverOptions(),
 ) -> list[dict]:
-    """Mesh once, then run every speed (lowest first, each warm-started from the one before).
+    """Mesh once, then run every speed (lowest first, each warm-started from the one before), with the
+    turbulence model and numerics of ``solver`` (their conditions kept apart from other choices').
 
     Results are saved after every speed (atomically), so an interrupted study loses nothing finished and
     resumes where it stopped.
     """
-    ws = Workspace(Path(work), level, mesh_options=tuple(sorted((mesh_options or {}).items())))
+    ws = Workspace(Path(work), level, mesh_options=tuple(sorted((mesh_options or {}).items())), solver=solver)
     body = ws.body(config, body_dir)
     mesh = ws.mesh(body, log=log, n_procs=n_procs)
     settings = CaseSettings(length=body.reference.length, components=body.component_names, n_procs=n_procs,
-                            max_iterations=criterion.max_iterations)
+                            max_iterations=criterion.max_iterations, solver=solver)
     experiment_key = config.upper() if body_dir is None else None
     points = []
     previous = None
@@ -84,6 +87,7 @@ def run_resistance(
         point.update(
             body=body.name,
             level=level,
+            turbulence_model=solver.turbulence_model,
             cells=mesh["cells"],
             experiment_source=RESISTANCE[experiment_key]["source"] if experiment_key in RESISTANCE else None,
         )
