@@ -330,3 +330,7 @@ def test_resistance_runs_the_turbulence_model_asked_for_in_its_own_conditions_fo
     assert point["turbulence_model"] == "LienCubicKE" and point["experiment_N"] == 95.41
     assert point["error_pct"] == pytest.approx(100 * (100.0 - 95.41) / 95.41, abs=0.01)
     assert "LienCubicKE" in capsys.readouterr().out
+    # without --results each model writes its own file: the cubic run leaves the default model's alone
+    assert main(["resistance", "--config", "AFF-3", "--work", str(tmp_path / "w"), "--speeds", "5.92",
+                 "--turbulence-model", "LienCubicKE"]) == 0
+    assert (tmp_path / "w/resistance-LienCubicKE.json").is_file() and not (tmp_path / "w/resistance.json").exists()

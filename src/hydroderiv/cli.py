@@ -129,10 +129,11 @@ def _resistance(args: argparse.Namespace) -> int:
     speeds = args.speeds or [k for k, _ in RESISTANCE.get(config, {"points": []})["points"]]
     if not speeds:
         raise HydroderivError(f"no measured speeds for {config}; give --speeds")
-    results = Path(args.results) if args.results else Path(args.work) / "resistance.json"
+    solver = SolverOptions(turbulence_model=check_turbulence_model(args.turbulence_model, "--turbulence-model"))
+    # one results file per model by default, so that another model's run leaves the first one's file alone
+    results = Path(args.results) if args.results else Path(args.work) / f"resistance{solver.folder_suffix}.json"
     # Resistance needs the drag settled; the other coefficients are reported, not waited for.
     criterion = ConvergenceCriterion(max_iterations=args.max_iterations, monitored=("X",))
-    solver = SolverOptions(turbulence_model=check_turbulence_model(args.turbulence_model, "--turbulence-model"))
     points = run_resistance(
         args.work, args.level, speeds, config=config, body_dir=args.body, n_procs=args.np, criterion=criterion,
         results_path=results, log=console.print,
@@ -761,7 +762,8 @@ def build_parser() -> argparse.ArgumentParser:
     res.add_argument("--np", type=int, default=2, help="MPI ranks (default 2)")
     res.add_argument("--max-iterations", type=int, default=3000)
     res.add_argument("--work", required=True, help="working directory (geometry, mesh, cases); resumable")
-    res.add_argument("--results", help="results JSON (default WORK/resistance.json); the plot goes beside it")
+    res.add_argument("--results", help="results JSON (default WORK/resistance.json, WORK/resistance-<model>.json with "
+                                       "another model than the default); the plot goes beside it")
     res.add_argument("--turbulence-model", default=DEFAULT_TURBULENCE_MODEL,
                      help=f"RAS model (default {DEFAULT_TURBULENCE_MODEL}; one of {', '.join(TURBULENCE_MODELS)}); "
                           "its speeds go to WORK/conditions-<model>/")
