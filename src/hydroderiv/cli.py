@@ -161,7 +161,6 @@ def _study_run(args: argparse.Namespace) -> int:
 def _straight_ahead(study, results: list[dict], args: argparse.Namespace) -> int:
     """Print and write the straight-ahead loads of a study without sweeps, the drag beside the tow."""
     from .experiments import error_percent
-    from .forces import PrimeScales
 
     if not results:
         raise HydroderivError(f"the straight-ahead condition of {study.path} has not finished")
@@ -169,7 +168,7 @@ def _straight_ahead(study, results: list[dict], args: argparse.Namespace) -> int
     vehicle = study.workspace.body(study.body, study.body_dir, write=False)
     towed = _xuu_from_resistance(study, vehicle)
     computed = result["coefficients"]["X"]
-    drag_n = -computed * PrimeScales(study.case_settings(vehicle).fluid.rho, study.speed, vehicle.reference.length).force
+    drag_n = -computed * study.prime_scales(vehicle).force
     record = {"study": str(study.path), "level": study.level, "body": study.body or str(study.body_dir),
               "speed_m_s": study.speed, **study.solver.record(), "converged": result["converged"],
               "iterations": result["iterations"], "X": computed, "drag_N": drag_n,
@@ -351,13 +350,11 @@ def _xuu_from_resistance(study, body) -> float | None:
     (negative: a drag), for the extended table; None where nothing was measured at that speed."""
     from .case import KNOT
     from .experiments import resistance_interpolated
-    from .forces import PrimeScales
 
     newtons = resistance_interpolated(study.body, study.speed / KNOT) if study.body else None
     if newtons is None:
         return None
-    scales = PrimeScales(study.case_settings(body).fluid.rho, study.speed, body.reference.length)
-    return -newtons / scales.force
+    return -newtons / study.prime_scales(body).force
 
 
 def _print_acceleration(body):

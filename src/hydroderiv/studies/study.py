@@ -61,6 +61,7 @@ from ..case.setup import CaseSettings, latest_time_dir
 from ..case.solver_options import STUDY_TABLE_KEYS, SolverOptions
 from ..derivatives.fit import NONLINEAR_TERMS
 from ..errors import ConfigurationError, HydroderivError
+from ..forces import PrimeScales
 from ..forces.surface_flow import describe_reversed_flow, describe_yplus_along_x
 from ..geometry import Body
 from ..mesh.design import mesh_options
@@ -176,6 +177,10 @@ class Study:
         """What every condition of this study needs besides the condition itself."""
         return CaseSettings(length=body.reference.length, components=body.component_names, n_procs=self.n_procs,
                             max_iterations=self.criterion.max_iterations, method=self.method, solver=self.solver)
+
+    def prime_scales(self, body: Body) -> PrimeScales:
+        """The prime system's scales of this study's loads: its fluid, its speed and the body's length."""
+        return PrimeScales(self.case_settings(body).fluid.rho, self.speed, body.reference.length)
 
     def criterion_for(self, condition: Condition) -> ConvergenceCriterion:
         """When ``condition`` has converged: the study's criterion, with the loads its derivatives come from
